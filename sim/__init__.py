@@ -1,0 +1,40 @@
+"""Multibody simulation core for tapered spherical (TSRB) and tapered roller bearings (TRB).
+
+Entry points:
+- :func:`load_config` composes ``conf/`` like the command line does;
+- :func:`simulate` runs a composed config and returns the result Dataset (DATA.md).
+"""
+from pathlib import Path
+
+CONF_DIR = Path(__file__).resolve().parent.parent / "conf"
+
+
+def load_config(overrides=None):
+    """Compose the project config with Hydra overrides, as ``python -m sim.run`` does.
+
+    Parameters
+    ----------
+    overrides : list of str, optional
+        Hydra overrides, e.g. ``["bearing=trb_32208", "load.Fa=4500"]``.
+
+    Returns
+    -------
+    omegaconf.DictConfig
+    """
+    from hydra import compose, initialize_config_dir
+    from hydra.core.global_hydra import GlobalHydra
+
+    if GlobalHydra.instance().is_initialized():
+        GlobalHydra.instance().clear()
+    with initialize_config_dir(config_dir=str(CONF_DIR), version_base="1.3"):
+        return compose(config_name="config", overrides=list(overrides or []))
+
+
+def simulate(cfg):
+    """Simulate a composed config; see :func:`sim.simulation.simulate`."""
+    from sim.simulation import simulate as _simulate
+
+    return _simulate(cfg)
+
+
+__all__ = ["load_config", "simulate", "CONF_DIR"]

@@ -1,0 +1,331 @@
+"""Roller-raceway and roller-end/rib contact geometry: penetration, normal, contact point per slice.
+
+The raceways are surfaces of revolution about the ring axis, so the signed distance of a
+point to a raceway is its signed distance, in the point's own meridian plane, to the
+raceway profile (exact for surfaces of revolution). The roller is cut into slices normal to
+its axis (thesis 5.2.1); per slice the contact point is the point of the slice circle that
+penetrates the raceway deepest (thesis (5.11)-(5.14) find it by a ray-torus intersection,
+(5.5)-(5.10); MODEL.md 3 allows any exact method):
+
+- :func:`slice_contact_meridian`: roller axis in the meridian plane (shift along the axis,
+  radial shift, tilt): the deepest point lies in the meridian plane; closed form.
+- :func:`slice_contact_3d`: the full pose including skew: Newton on the angle around the
+  slice circle, started from the meridian point; reduces to the former without skew.
+
+Kernel units: mm, rad. Profiles are given as (kind, params) arrays built by
+:class:`sim.geometry.Geometry` (``RACE_LINE``: point and unit normal into the ring;
+``RACE_LENS``: two arc centres and their radius PCR_LB; the cavity is the intersection of
+the two disks, so the penetration is the larger of the two arcs' penetrations).
+"""
+import numpy as np
+
+from sim._jit import kernel
+
+RACE_LINE = 0
+RACE_LENS = 1
+
+
+@kernel
+def race_penetration(qr, qz, kind, par):
+    """Signed penetration of a point into a raceway profile, in ring coordinates.
+
+    Parameters
+    ----------
+    qr, qz : float
+        Point in the meridian plane [mm].
+    kind : int
+        RACE_LINE or RACE_LENS.
+    par : ndarray (6,)
+        Profile parameters [mm, 1] (see module docstring).
+
+    Returns
+    -------
+    d : float
+        Penetration [mm], > 0 inside the ring material (the rigid-body penetration of
+        thesis (5.12); the negative gap otherwise).
+    nr, nz : float
+        Unit normal of the raceway at the nearest profile point, pointing into the ring.
+    """
+    if kind == RACE_LINE:
+        return (qr - par[0]) * par[2] + (qz - par[1]) * par[3], par[2], par[3]
+    best = -1.0e300
+    nr = 0.0
+    nz = 0.0
+    for k in range(2):
+        dr = qr - par[2 * k]
+        dz = qz - par[2 * k + 1]
+        dist = np.sqrt(dr * dr + dz * dz)
+        d = dist - par[4]
+        if d > best:
+            best = d
+            nr = dr / dist
+            nz = dz / dist
+    return best, nr, nz
+
+
+@kernel
+def roller_axes(alpha, theta):
+    """Unit vectors (u', v') of a roller tilted by theta in its meridian plane, in (r, z).
+
+    Parameters
+    ----------
+    alpha : float
+        Roller-axis angle [rad].
+    theta : float
+        Tilt in the meridian plane [rad], positive turning u towards v.
+
+    Returns
+    -------
+    ur, uz, vr, vz : float
+        u' = u cos(theta) + v sin(theta), v' = -u sin(theta) + v cos(theta), with
+        u = (sin(alpha), -cos(alpha)), v = (cos(alpha), sin(alpha)) (sim.geometry).
+    """
+    sa = np.sin(alpha)
+    ca = np.cos(alpha)
+    ct = np.cos(theta)
+    st = np.sin(theta)
+    ur = sa * ct + ca * st
+    uz = -ca * ct + sa * st
+    vr = -sa * st + ca * ct
+    vz = ca * st + sa * ct
+    return ur, uz, vr, vz
+
+
+@kernel
+def slice_contact_meridian(x, rho, side, pose, alpha, Dpw, kind, par, ring_dr, ring_dz, ring_phi,
+                           d_out, n_out, q_out):
+    """Penetration, normal and contact point of every slice of one roller against one raceway.
+
+    Parameters
+    ----------
+    x, rho : ndarray (N,)
+        Slice centres along the roller axis from mid-length and roller radius there [mm].
+    side : int
+        +1 outer raceway (top generatrix), -1 inner raceway (bottom generatrix).
+    pose : ndarray (3,)
+        Roller shift along its axis xi [mm], radial shift eta along v [mm], tilt theta [rad].
+    alpha, Dpw : float
+        Roller-axis angle [rad], pitch diameter [mm].
+    kind, par :
+        Raceway profile in ring coordinates (module docstring).
+    ring_dr, ring_dz, ring_phi : float
+        Rigid displacement of the ring in this meridian plane: translation [mm] and rotation
+        [rad] (world = Rot(phi) ring + translation).
+    d_out : ndarray (N,)
+        Penetrations [mm] (written).
+    n_out : ndarray (N, 2)
+        Unit contact normals into the ring, world (r, z) (written).
+    q_out : ndarray (N, 2)
+        Contact points on the roller surface, world (r, z) [mm] (written); thesis (5.11).
+    """
+    ur, uz, vr, vz = roller_axes(alpha, pose[2])
+    sa = np.sin(alpha)
+    ca = np.cos(alpha)
+    cr = 0.5 * Dpw + pose[0] * sa + pose[1] * ca
+    cz = -pose[0] * ca + pose[1] * sa
+    cp = np.cos(ring_phi)
+    sp = np.sin(ring_phi)
+    for k in range(x.shape[0]):
+        y = side * rho[k]
+        qr = cr + x[k] * ur + y * vr
+        qz = cz + x[k] * uz + y * vz
+        # into ring coordinates: Rot(-phi) (q - translation)
+        tr = qr - ring_dr
+        tz = qz - ring_dz
+        lr = cp * tr + sp * tz
+        lz = -sp * tr + cp * tz
+        d, nr, nz = race_penetration(lr, lz, kind, par)
+        d_out[k] = d
+        n_out[k, 0] = cp * nr - sp * nz
+        n_out[k, 1] = sp * nr + cp * nz
+        q_out[k, 0] = qr
+        q_out[k, 1] = qz
+
+
+@kernel
+def _surface_distance_3d(px, py, pz, ax, ay, az, ox, oy, oz, kind, par):
+    """Penetration of a 3-D point into a raceway of revolution about axis a through o."""
+    dx = px - ox
+    dy = py - oy
+    dz = pz - oz
+    zz = dx * ax + dy * ay + dz * az
+    rx = dx - zz * ax
+    ry = dy - zz * ay
+    rz = dz - zz * az
+    rr = np.sqrt(rx * rx + ry * ry + rz * rz)
+    return race_penetration(rr, zz, kind, par)
+
+
+@kernel
+def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kind, par,
+                     d_out, p_out, n_out):
+    """Slice contact for a roller in any pose (shift, radial, tilt, skew), 3-D.
+
+    For each slice, the point of the slice circle (centre c + x a, radius rho, in the plane
+    normal to the roller axis a) that penetrates the raceway deepest is found by Newton
+    iteration on its angle, started from ``side_dir`` (the direction from the roller axis
+    towards the raceway, e.g. the meridian direction). This is the exact slice-model contact
+    of thesis 5.2.2 for a raceway of revolution.
+
+    Parameters
+    ----------
+    center : ndarray (3,)
+        Roller centre (mid-length on its axis) [mm], bearing frame (x, y, z).
+    axis : ndarray (3,)
+        Unit roller axis towards the large end.
+    x, rho : ndarray (N,)
+        Slice positions along the axis from the centre and slice radii [mm].
+    side_dir : ndarray (3,)
+        Start direction, roughly towards the raceway, normal to ``axis`` (normalised here).
+    ring_origin, ring_axis : ndarray (3,)
+        A point on the ring axis and its unit direction (the ring's own z) [mm, 1].
+    kind, par :
+        Raceway profile in the ring's (r, z) coordinates.
+    d_out : ndarray (N,)
+        Penetration [mm]. p_out : (N, 3) contact point on the roller [mm].
+        n_out : (N, 3) unit normal into the ring.
+    """
+    # orthonormal basis (e1, e2) of the slice plane, e1 along side_dir
+    s = side_dir[0] * axis[0] + side_dir[1] * axis[1] + side_dir[2] * axis[2]
+    e1x = side_dir[0] - s * axis[0]
+    e1y = side_dir[1] - s * axis[1]
+    e1z = side_dir[2] - s * axis[2]
+    n1 = np.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
+    e1x /= n1
+    e1y /= n1
+    e1z /= n1
+    e2x = axis[1] * e1z - axis[2] * e1y
+    e2y = axis[2] * e1x - axis[0] * e1z
+    e2z = axis[0] * e1y - axis[1] * e1x
+    h = 1e-4  # rad, finite-difference step of the angle Newton (second-order accurate)
+    for k in range(x.shape[0]):
+        bx = center[0] + x[k] * axis[0]
+        by = center[1] + x[k] * axis[1]
+        bz = center[2] + x[k] * axis[2]
+        t = 0.0
+        for it in range(30):
+            fm = _pen_on_circle(t - h, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
+                                ring_origin, ring_axis, kind, par)
+            f0 = _pen_on_circle(t, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
+                                ring_origin, ring_axis, kind, par)
+            fp = _pen_on_circle(t + h, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
+                                ring_origin, ring_axis, kind, par)
+            g1 = (fp - fm) / (2.0 * h)
+            g2 = (fp - 2.0 * f0 + fm) / (h * h)
+            if g2 >= 0.0:  # not a maximum locally: gradient step
+                step = 1e-2 * np.sign(g1)
+            else:
+                step = -g1 / g2
+            if step > 0.2:
+                step = 0.2
+            elif step < -0.2:
+                step = -0.2
+            t += step
+            if abs(step) < 1e-12:
+                break
+        c = np.cos(t)
+        sn = np.sin(t)
+        px = bx + rho[k] * (c * e1x + sn * e2x)
+        py = by + rho[k] * (c * e1y + sn * e2y)
+        pz = bz + rho[k] * (c * e1z + sn * e2z)
+        d, nr, nz = _surface_distance_3d(px, py, pz, ring_axis[0], ring_axis[1], ring_axis[2],
+                                         ring_origin[0], ring_origin[1], ring_origin[2], kind, par)
+        # normal back to 3-D: radial unit of the point's meridian plane and the ring axis
+        dx = px - ring_origin[0]
+        dy = py - ring_origin[1]
+        dz = pz - ring_origin[2]
+        zz = dx * ring_axis[0] + dy * ring_axis[1] + dz * ring_axis[2]
+        rx = dx - zz * ring_axis[0]
+        ry = dy - zz * ring_axis[1]
+        rz = dz - zz * ring_axis[2]
+        rr = np.sqrt(rx * rx + ry * ry + rz * rz)
+        d_out[k] = d
+        p_out[k, 0] = px
+        p_out[k, 1] = py
+        p_out[k, 2] = pz
+        n_out[k, 0] = nr * rx / rr + nz * ring_axis[0]
+        n_out[k, 1] = nr * ry / rr + nz * ring_axis[1]
+        n_out[k, 2] = nr * rz / rr + nz * ring_axis[2]
+
+
+@kernel
+def _pen_on_circle(t, bx, by, bz, rho, e1x, e1y, e1z, e2x, e2y, e2z, ring_origin, ring_axis, kind, par):
+    c = np.cos(t)
+    s = np.sin(t)
+    px = bx + rho * (c * e1x + s * e2x)
+    py = by + rho * (c * e1y + s * e2y)
+    pz = bz + rho * (c * e1z + s * e2z)
+    d, nr, nz = _surface_distance_3d(px, py, pz, ring_axis[0], ring_axis[1], ring_axis[2],
+                                     ring_origin[0], ring_origin[1], ring_origin[2], kind, par)
+    return d
+
+
+@kernel
+def hertz_line_half_width(line_load, R, E_star):
+    """Hertz line contact semi-width.
+
+    Parameters
+    ----------
+    line_load : float
+        Load per unit length [N/mm].
+    R : float
+        Radius of relative curvature in the rolling direction [mm].
+    E_star : float
+        Contact modulus, 1/E* = (1-nu1^2)/E1 + (1-nu2^2)/E2 [N/mm^2].
+
+    Returns
+    -------
+    float
+        b [mm] = sqrt(4 w R / (pi E*)) (Johnson, Contact Mechanics, eq. 4.43).
+    """
+    return np.sqrt(4.0 * line_load * R / (np.pi * E_star))
+
+
+@kernel
+def hertz_line_pressure(line_load, R, E_star):
+    """Hertz line contact maximum pressure.
+
+    Parameters
+    ----------
+    line_load : float
+        Load per unit length [N/mm].
+    R : float
+        Radius of relative curvature [mm].
+    E_star : float
+        Contact modulus [N/mm^2].
+
+    Returns
+    -------
+    float
+        p0 [MPa] = sqrt(w E* / (pi R)) (Johnson eq. 4.45).
+    """
+    return np.sqrt(line_load * E_star / (np.pi * R))
+
+
+@kernel
+def hertz_point_load(delta, R, E_star):
+    """Load of a Hertz sphere-on-plane contact from its approach.
+
+    Parameters
+    ----------
+    delta : float
+        Approach [mm].
+    R : float
+        Sphere radius [mm].
+    E_star : float
+        Contact modulus [N/mm^2].
+
+    Returns
+    -------
+    Q, dQ/ddelta : float
+        Q [N] = (4/3) E* sqrt(R) delta^(3/2) (Johnson eq. 4.23) and its derivative [N/mm].
+    """
+    if delta <= 0.0:
+        return 0.0, 0.0
+    k = 4.0 / 3.0 * E_star * np.sqrt(R)
+    return k * delta**1.5, 1.5 * k * np.sqrt(delta)
+
+
+def contact_modulus(E, nu):
+    """Contact modulus E* of two equal steel bodies [N/mm^2]: 1/E* = 2 (1 - nu^2)/E (Johnson eq. 4.22)."""
+    return E / (2.0 * (1.0 - nu**2))

@@ -1,0 +1,250 @@
+"""Slice elasticity: load per slice from the rigid penetrations.
+
+Two models (MODEL.md 3):
+
+- independent slices (ISO/TS 16281): each slice carries q = k delta^(10/9) on its own;
+- elastically coupled slices (the default), in the spirit of the Alternative Slicing
+  Technique of Teutsch & Sauer (2004) (thesis 5.3): the surface deflection of a slice is
+  the half-space (Boussinesq) deflection under the loads of all slices. The slice load is
+  spread uniformly along the slice and, across the rolling direction, as a Hertzian
+  semi-ellipse of half-width b (Johnson eq. 4.43). A load on one slice thus deflects its
+  neighbours, and an end slice, with neighbours on one side only, carries more load for
+  the same penetration: the edge stress peak of an unprofiled roller (thesis Fig. 5.4).
+
+Influence numbers (deflection of both bodies per unit line load, mm / (N/mm)):
+
+- i != k (slices far apart compared with b, line load on the roller axis):
+  C_ki = 1/(pi E*) ln((|x_k - x_i| + w/2) / (|x_k - x_i| - w/2))   (Boussinesq, Johnson 3.2);
+- i == k: (2/(pi E*)) (ln(w/b) + 1/2 + ln 2), the centre deflection of a strip of length
+  w >> b with semi-elliptic pressure (integral of Johnson eq. 3.20 over the strip; the
+  1/2 + ln 2 is the exact value of -(2/pi) * integral of sqrt(1 - t^2) ln|t| over (-1, 1)).
+
+For a uniformly loaded roller of length L the sum telescopes to
+(2 q/(pi E*)) (ln(L/b) + 1/2 + ln 2), independent of the slice width: the coupled model
+converges with the number of slices.
+"""
+import numpy as np
+
+from sim._jit import kernel
+from sim.solvers.linalg import solve_dense
+
+ELASTICITY_MODES = {"independent": 0, "coupled": 1}
+
+
+def influence_matrix(x, w, E_star):
+    """Off-diagonal slice influence numbers (diagonal zero; the self term is load dependent).
+
+    Parameters
+    ----------
+    x : ndarray (N,)
+        Slice centres [mm].
+    w : float
+        Slice width [mm].
+    E_star : float
+        Contact modulus [N/mm^2].
+
+    Returns
+    -------
+    ndarray (N, N)
+        C_ki [mm per N/mm] (module docstring).
+    """
+    dist = np.abs(x[:, None] - x[None, :])
+    np.fill_diagonal(dist, 1.0)
+    C = np.log((dist + 0.5 * w) / (dist - 0.5 * w)) / (np.pi * E_star)
+    np.fill_diagonal(C, 0.0)
+    return np.ascontiguousarray(C)
+
+
+@kernel
+def self_deflection(q, w, R, E_star):
+    """Deflection of a slice under its own load, and its derivative.
+
+    Parameters
+    ----------
+    q : float
+        Line load of the slice [N/mm], > 0.
+    w : float
+        Slice width [mm].
+    R : float
+        Radius of relative curvature in the rolling direction [mm].
+    E_star : float
+        Contact modulus [N/mm^2].
+
+    Returns
+    -------
+    u, du/dq : float
+        u [mm] = (2 q/(pi E*)) (ln(w/b) + 1/2 + ln 2), b = sqrt(4 q R/(pi E*)) (module docstring).
+    """
+    b = np.sqrt(4.0 * q * R / (np.pi * E_star))
+    c = 2.0 / (np.pi * E_star)
+    lw = np.log(w / b)
+    return c * q * (lw + 0.5 + np.log(2.0)), c * (lw + np.log(2.0))
+
+
+@kernel
+def independent_slice_loads(d, k_line, q, dq):
+    """Line load of independent slices, ISO/TS 16281.
+
+    Parameters
+    ----------
+    d : ndarray (N,)
+        Rigid penetrations [mm].
+    k_line : float
+        Line stiffness [N/mm per mm^(10/9)]: q = k_line d^(10/9) per unit length.
+    q, dq : ndarray (N,)
+        Line loads [N/mm] and dq/dd [N/mm^2] (written).
+
+    Returns
+    -------
+    int
+        Number of loaded slices.
+    """
+    n = 0
+    for k in range(d.shape[0]):
+        if d[k] > 0.0:
+            q[k] = k_line * d[k] ** (10.0 / 9.0)
+            dq[k] = (10.0 / 9.0) * k_line * d[k] ** (1.0 / 9.0)
+            n += 1
+        else:
+            q[k] = 0.0
+            dq[k] = 0.0
+    return n
+
+
+@kernel
+def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
+    """Line loads of elastically coupled slices (complementarity problem).
+
+    Finds q >= 0 with, for every loaded slice, sum_i C_ki q_i + u_self(q_k) = d_k, and for
+    every unloaded slice sum_i C_ki q_i >= d_k (the neighbours' deflection opens the gap).
+    Active-set Newton, warm-started from ``q``/``active``.
+
+    Parameters
+    ----------
+    d : ndarray (N,)
+        Rigid penetrations [mm].
+    C : ndarray (N, N)
+        Off-diagonal influence numbers [mm per N/mm] (:func:`influence_matrix`).
+    w : float
+        Slice width [mm].
+    R : ndarray (N,)
+        Radii of relative curvature [mm].
+    E_star : float
+        Contact modulus [N/mm^2].
+    q : ndarray (N,)
+        Line loads [N/mm]: warm start in, solution out.
+    active : ndarray (N,) bool
+        Loaded slices: warm start in, solution out.
+    tol : float
+        Deflection tolerance [mm].
+
+    Returns
+    -------
+    (converged, iterations)
+    """
+    n = d.shape[0]
+    dmax = 0.0
+    nact = 0
+    for k in range(n):
+        if d[k] > dmax:
+            dmax = d[k]
+        if active[k] and q[k] > 0.0:
+            nact += 1
+        else:
+            active[k] = False
+            q[k] = 0.0
+    if dmax <= 0.0:
+        for k in range(n):
+            q[k] = 0.0
+            active[k] = False
+        return True, 0
+    if nact == 0:  # cold start: every penetrating slice, loads from its own deflection only
+        for k in range(n):
+            if d[k] > 0.0:
+                active[k] = True
+                q[k] = _load_from_self_deflection(d[k], w, R[k], E_star)
+    idx = np.empty(n, dtype=np.int64)
+    total = 0
+    for outer in range(4 * n + 4):
+        m = 0
+        for k in range(n):
+            if active[k]:
+                idx[m] = k
+                m += 1
+        changed = False
+        # Newton on the active set; a slice whose Newton step crosses zero load is released
+        J = np.empty((m, m))
+        F = np.empty(m)
+        for it in range(60):
+            total += 1
+            fmax = 0.0
+            for a in range(m):
+                k = idx[a]
+                s = 0.0
+                for bb in range(m):
+                    J[a, bb] = C[k, idx[bb]]
+                    s += C[k, idx[bb]] * q[idx[bb]]
+                u, du = self_deflection(q[k], w, R[k], E_star)
+                J[a, a] = du
+                F[a] = s + u - d[k]
+                if abs(F[a]) > fmax:
+                    fmax = abs(F[a])
+            if fmax <= tol or m == 0:
+                break
+            dq = solve_dense(J, -F)
+            for a in range(m):
+                k = idx[a]
+                if q[k] + dq[a] <= 0.0:
+                    q[k] = 0.0
+                    active[k] = False
+                    changed = True
+            if changed:
+                break
+            for a in range(m):
+                q[idx[a]] += dq[a]
+        if changed:
+            continue
+        # add penetrating slices that the neighbours' deflection does not open
+        for k in range(n):
+            if not active[k]:
+                s = 0.0
+                for bb in range(n):
+                    if active[bb]:
+                        s += C[k, bb] * q[bb]
+                if d[k] - s > tol:
+                    active[k] = True
+                    q[k] = _load_from_self_deflection(d[k] - s, w, R[k], E_star)
+                    changed = True
+        if not changed:
+            return True, total
+    return False, total
+
+
+@kernel
+def _load_from_self_deflection(u, w, R, E_star):
+    """Line load [N/mm] whose self deflection is u [mm] (fixed point on the slowly varying log)."""
+    c = 2.0 / (np.pi * E_star)
+    q = u / (6.0 * c)
+    for it in range(4):
+        b = np.sqrt(4.0 * q * R / (np.pi * E_star))
+        q = u / (c * (np.log(w / b) + 0.5 + np.log(2.0)))
+    return q
+
+
+@kernel
+def coupled_slice_compliance(C, w, R, E_star, q, active, J):
+    """Tangent of the coupled slices on the active set: dq/dd = J^-1 (J written, N x N, zero-padded).
+
+    J[a, b] = C_ab + delta_ab du_self/dq for a, b loaded; unloaded rows/columns hold the identity
+    so that J stays invertible and dq/dd is zero there after masking.
+    """
+    n = q.shape[0]
+    for a in range(n):
+        for b in range(n):
+            if active[a] and active[b]:
+                J[a, b] = C[a, b]
+            else:
+                J[a, b] = 1.0 if a == b else 0.0
+        if active[a]:
+            u, du = self_deflection(q[a], w, R[a], E_star)
+            J[a, a] = du

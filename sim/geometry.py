@@ -1,0 +1,405 @@
+"""Bearing geometry of the TSRB and the TRB: derived values, feasibility, slice discretisation.
+
+Frames (MODEL.md 1-2). Bearing axis z, pointing from the large roller ends towards the apex
+of the raceway cones, so that the axial load ``Fa`` on the inner ring acts along +z. In the
+meridian plane of a roller, coordinates are (r, z); the roller centre (mid-length, on its
+axis) sits at (Dpw/2, 0). The roller frame has ``u`` along the roller axis towards the
+large end and ``v`` normal to it, outwards:
+
+    u = (sin(alpha), -cos(alpha)),   v = (cos(alpha), sin(alpha))      in (r, z).
+
+``alpha`` is the angle of the roller axis (the mean contact angle of eq. (2.1)); the outer
+contact normal is at alpha + gamma, the inner at alpha - gamma (MODEL.md 2). In the roller
+frame, x runs along u from mid-length (positive towards the large end), y along v.
+
+Everything here is computed once per bearing; kernels receive plain arrays (mm, rad).
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+
+TRB = 0
+TSRB = 1
+TYPE_CODES = {"TRB": TRB, "TSRB": TSRB}
+
+# Raceway profile kinds understood by sim.contact.
+RACE_LINE = 0  # straight generatrix (cone): point and unit normal into the ring
+RACE_LENS = 1  # two circular arcs of equal radius whose disks intersect (TSRB, "two intersected tori")
+
+
+class GeometryError(ValueError):
+    """Impossible bearing geometry; the message names the parameter, its value and the bound."""
+
+
+def taper_angle(alpha, Dwe, Dpw):
+    """Roller cone half-angle gamma.
+
+    Parameters
+    ----------
+    alpha : float
+        Mean contact angle (roller-axis angle) [rad].
+    Dwe, Dpw : float
+        Roller diameter at mid-length and pitch diameter [mm].
+
+    Returns
+    -------
+    float
+        gamma [rad] = atan(Dwe sin(alpha) / Dpw), thesis eq. (2.1).
+    """
+    return np.arctan(Dwe * np.sin(alpha) / Dpw)
+
+
+def raceway_profile_radius(PCR, kappa):
+    """Profile curve radius of the raceways PCR_LB from the osculation.
+
+    Parameters
+    ----------
+    PCR : float
+        Profile curve radius of the roller [mm].
+    kappa : float
+        Osculation [1].
+
+    Returns
+    -------
+    float
+        PCR_LB [mm] = PCR (2 - kappa), from thesis eq. (2.7): kappa = 1 - (PCR_LB - PCR)/PCR.
+    """
+    return PCR * (2.0 - kappa)
+
+
+def centre_offset_aA(PCR, alpha, gamma, Dwe, Dpw):
+    """Distance aA from the bearing axis to the centre of the roller's PCR (thesis Fig. 2.7).
+
+    Parameters
+    ----------
+    PCR : float
+        Profile curve radius of the roller [mm].
+    alpha, gamma : float
+        Roller-axis angle and taper angle [rad].
+    Dwe, Dpw : float
+        Roller and pitch diameter [mm].
+
+    Returns
+    -------
+    float
+        aA [mm], positive on the far side of the bearing axis:
+        aA = PCR cos(alpha + gamma) - Dpw/2 - (Dwe/2) cos(alpha).
+        This is the relation of MODEL.md 2 (reproduces thesis Tables 7.1, 7.4, 7.5 (longer
+        roller) and A.5 to about 1 mm; Tables 6.1 and 7.5 (bigger alpha) do not fit it).
+    """
+    return PCR * np.cos(alpha + gamma) - 0.5 * Dpw - 0.5 * Dwe * np.cos(alpha)
+
+
+def log_crown_drop(x, Dwe, Lwe, coefficient):
+    """Logarithmic roller profile drop of tapered rollers.
+
+    Parameters
+    ----------
+    x : array_like
+        Position along the roller axis from mid-length [mm], |x| < Lwe/2.
+    Dwe, Lwe : float
+        Roller diameter and effective length [mm].
+    coefficient : float
+        0.00045 for tapered rollers [1].
+
+    Returns
+    -------
+    ndarray
+        P(x) [mm] = c Dwe ln(1 / (1 - (2x/Lwe)^2)), thesis eq. (2.5) (DIN 26281, ISO/TS 16281).
+    """
+    t = (2.0 * np.asarray(x, dtype=float) / Lwe) ** 2
+    return coefficient * Dwe * np.log(1.0 / (1.0 - t))
+
+
+def _require(condition, name, value, bound):
+    if not condition:
+        raise GeometryError(f"bearing.{name} = {value!r} is impossible: it must be {bound}")
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """A TSRB or TRB, with every derived value computed once (kernel units: mm, rad, N, t).
+
+    Built by :meth:`from_config`; refuses impossible input before any numerics run.
+    """
+
+    type: str
+    alpha: float
+    gamma: float
+    Dpw: float
+    Dwe: float
+    Lwe: float
+    B: float
+    r: float
+    R: float
+    Z: int
+    b_m: float
+    ratings_alpha: float
+    E: float
+    nu: float
+    density: float  # t/mm^3
+    n_slices: int
+    # TSRB only (nan for the TRB)
+    PCR: float = np.nan
+    kappa: float = np.nan
+    aP: float = np.nan
+    aPk: float = np.nan
+    # TRB only (nan for the TSRB)
+    crown_coefficient: float = np.nan
+    roller_end_radius_ratio: float = np.nan
+    rib_contact_height_ratio: float = np.nan
+    arrays: dict = field(default_factory=dict, compare=False, repr=False)
+
+    # ------------------------------------------------------------------ construction
+    @classmethod
+    def from_config(cls, bearing, material, n_slices):
+        """Build from the ``bearing`` and ``material`` config nodes (degrees at this edge)."""
+        b = dict(bearing)
+        kind = str(b.get("type", ""))
+        if kind not in TYPE_CODES:
+            raise GeometryError(f"bearing.type = {kind!r} is impossible: it must be one of {sorted(TYPE_CODES)}")
+        common = ["alpha", "Dpw", "Dwe", "Lwe", "B", "r", "R", "Z", "b_m", "ratings_alpha"]
+        own = ["PCR", "kappa", "aP", "aPk"] if kind == "TSRB" else [
+            "crown_coefficient", "roller_end_radius_ratio", "rib_contact_height_ratio"]
+        for key in common + own:
+            if key not in b or b[key] is None:
+                raise GeometryError(f"bearing.{key} is missing: a {kind} needs {', '.join(common + own)}")
+        _require(float(b["Z"]) == int(b["Z"]) and int(b["Z"]) >= 3, "Z", b["Z"], "an integer >= 3")
+        _require(isinstance(n_slices, (int, np.integer)) and 2 <= n_slices <= 400,
+                 "n_slices (solver.n_slices)", n_slices, "an integer in [2, 400]")
+        for key in ("Dpw", "Dwe", "Lwe", "B", "r", "R", "b_m"):
+            _require(float(b[key]) > 0.0, key, b[key], "> 0")
+        _require(0.0 < float(b["alpha"]) < 60.0, "alpha", b["alpha"], "in (0, 60) deg")
+        _require(0.0 < float(b["ratings_alpha"]) < 90.0, "ratings_alpha", b["ratings_alpha"], "in (0, 90) deg")
+        E, nu, rho = float(material["E"]), float(material["nu"]), float(material["density"])
+        _require(E > 0.0, "material.E", E, "> 0")
+        _require(0.0 <= nu < 0.5, "material.nu", nu, "in [0, 0.5)")
+        _require(rho > 0.0, "material.density", rho, "> 0")
+        alpha = np.radians(float(b["alpha"]))
+        Dwe, Dpw = float(b["Dwe"]), float(b["Dpw"])
+        extra = {}
+        if kind == "TSRB":
+            extra = {k: float(b[k]) for k in own}
+        else:
+            extra = {k: float(b[k]) for k in own}
+        g = cls(type=kind, alpha=alpha, gamma=taper_angle(alpha, Dwe, Dpw), Dpw=Dpw, Dwe=Dwe,
+                Lwe=float(b["Lwe"]), B=float(b["B"]), r=float(b["r"]), R=float(b["R"]), Z=int(b["Z"]),
+                b_m=float(b["b_m"]), ratings_alpha=float(b["ratings_alpha"]), E=E, nu=nu,
+                density=rho * 1e-12, n_slices=int(n_slices), **extra)
+        g._check()
+        object.__setattr__(g, "arrays", g._build_arrays())
+        return g
+
+    def _check(self):
+        """Refuse geometry that cannot exist (MODEL.md 2), naming parameter and bound."""
+        half = 0.5 * self.Lwe
+        _require(self.Dwe < self.Dpw, "Dwe", self.Dwe, f"< Dpw = {self.Dpw}")
+        _require(self.r < 0.5 * self.Dpw < self.R, "Dpw", self.Dpw,
+                 f"between 2r = {2 * self.r} and 2R = {2 * self.R}")
+        if self.type == "TSRB":
+            _require(0.0 < self.kappa < 1.0, "kappa", self.kappa,
+                     "in (0, 1) (kappa = 1 gives PCR_LB = PCR: no two-point contact)")
+            _require(self.PCR > half, "PCR", self.PCR, f"> Lwe/2 = {half} (the crown must span the roller)")
+            _require(self.aP > 0.0, "aP", self.aP, "> 0")
+            _require(self.aPk > 0.0, "aPk", self.aPk, "> 0 (first contact point inside the roller)")
+            _require(self.aPk + self.aP < self.Lwe, "aPk", self.aPk,
+                     f"< Lwe - aP = {self.Lwe - self.aP} (second contact point inside the roller)")
+            crown = self.PCR - np.sqrt(self.PCR**2 - self.Lwe**2)  # generous bound on the end drop
+            _require(crown < 0.5 * self.Dwe * np.cos(self.gamma), "PCR", self.PCR,
+                     "large enough that the roller ends keep a positive radius")
+        else:
+            _require(0.0 < self.crown_coefficient < 0.01, "crown_coefficient", self.crown_coefficient, "in (0, 0.01)")
+            _require(0.3 < self.roller_end_radius_ratio <= 1.0, "roller_end_radius_ratio",
+                     self.roller_end_radius_ratio, "in (0.3, 1]")
+            _require(0.0 < self.rib_contact_height_ratio < 0.5, "rib_contact_height_ratio",
+                     self.rib_contact_height_ratio, "in (0, 0.5)")
+        # the roller must fit between the rings and inside the width
+        x_end = np.array([-half, half])
+        # uncrowned cone for the TRB (its logarithmic drop is unbounded at the very ends)
+        rho_end = self.roller_radius(x_end) if self.type == "TSRB" else 0.5 * self.Dwe + x_end * np.tan(self.gamma)
+        r_out = 0.5 * self.Dpw + x_end * np.sin(self.alpha) + rho_end * np.cos(self.alpha)
+        r_in = 0.5 * self.Dpw + x_end * np.sin(self.alpha) - rho_end * np.cos(self.alpha)
+        _require(r_out.max() < self.R, "R", self.R, f"> {r_out.max():.3f} mm (outer raceway radius at the large end)")
+        _require(r_in.min() > self.r, "r", self.r, f"< {r_in.min():.3f} mm (inner raceway radius at the small end)")
+        axial = self.Lwe * np.cos(self.alpha) + self.Dwe * np.sin(self.alpha)
+        _require(axial < self.B, "B", self.B, f"> {axial:.3f} mm (axial extent of the roller)")
+
+    # ------------------------------------------------------------------ derived values
+    @property
+    def type_code(self):
+        return TYPE_CODES[self.type]
+
+    @property
+    def PCR_LB(self):
+        """Raceway profile curve radius [mm], eq. (2.7)."""
+        return raceway_profile_radius(self.PCR, self.kappa)
+
+    @property
+    def s(self):
+        """PCR_LB - PCR [mm] (Table 4.2 'osculation')."""
+        return self.PCR_LB - self.PCR
+
+    @property
+    def aA(self):
+        """Distance bearing axis - centre of PCR [mm] (MODEL.md 2)."""
+        return centre_offset_aA(self.PCR, self.alpha, self.gamma, self.Dwe, self.Dpw)
+
+    @property
+    def contact_points_x(self):
+        """TSRB contact points along the roller axis from mid-length, small-end one first [mm].
+
+        aPk is measured from the small end face (MODEL.md 2 and 4).
+        """
+        return np.array([-0.5 * self.Lwe + self.aPk, -0.5 * self.Lwe + self.aPk + self.aP])
+
+    @property
+    def crown_centre(self):
+        """Centre of the roller generatrix circle in the roller frame (x, y) [mm] (TSRB)."""
+        return np.array([self.PCR * np.sin(self.gamma), 0.5 * self.Dwe - self.PCR * np.cos(self.gamma)])
+
+    @property
+    def load_centroid_x(self):
+        """x* = PCR sin(gamma) [mm]: rib-free axial balance point of the TSRB (MODEL.md 4)."""
+        return self.PCR * np.sin(self.gamma)
+
+    @property
+    def slice_width(self):
+        return self.Lwe / self.n_slices
+
+    @property
+    def x_slice_from_large_end(self):
+        """Slice centres along the roller axis from the large end [mm] (DATA.md ``x_slice``)."""
+        return (np.arange(self.n_slices) + 0.5) * self.slice_width
+
+    @property
+    def x_slice(self):
+        """Slice centres from mid-length, positive towards the large end [mm]; slice 0 at the large end."""
+        return 0.5 * self.Lwe - self.x_slice_from_large_end
+
+    @property
+    def apex_distance(self):
+        """Distance from the roller centre to the cone apex along the roller axis [mm]."""
+        return 0.5 * self.Dpw / np.sin(self.alpha)
+
+    def roller_radius(self, x):
+        """Roller radius rho(x) normal to its axis, crown included [mm].
+
+        TSRB: circle of radius PCR through (0, Dwe/2) with slope tan(gamma) there (MODEL.md 2).
+        TRB: cone Dwe/2 + x tan(gamma) minus the logarithmic drop of eq. (2.5), taken normal
+        to the generatrix (hence the 1/cos(gamma)).
+        """
+        x = np.asarray(x, dtype=float)
+        if self.type == "TSRB":
+            xc, yc = self.crown_centre
+            return yc + np.sqrt(self.PCR**2 - (x - xc) ** 2)
+        return 0.5 * self.Dwe + x * np.tan(self.gamma) - log_crown_drop(x, self.Dwe, self.Lwe,
+                                                                       self.crown_coefficient) / np.cos(self.gamma)
+
+    def roller_profile_slope(self, x):
+        """d rho / dx of the nominal (uncrowned for the TRB) generatrix [1]."""
+        x = np.asarray(x, dtype=float)
+        if self.type == "TSRB":
+            xc, _ = self.crown_centre
+            return -(x - xc) / np.sqrt(self.PCR**2 - (x - xc) ** 2)
+        return np.full_like(x, np.tan(self.gamma))
+
+    # ------------------------------------------------------------------ kernel arrays
+    def to_meridian(self, x, y):
+        """Roller-frame point(s) at the nominal pose -> meridian (r, z) [mm]."""
+        a = self.alpha
+        r = 0.5 * self.Dpw + x * np.sin(a) + y * np.cos(a)
+        z = -x * np.cos(a) + y * np.sin(a)
+        return r, z
+
+    def _race_arrays(self, side):
+        """Raceway profile in ring coordinates (r, z) at the nominal (unloaded) position.
+
+        side = +1 outer, -1 inner. Returns (kind, params[6]):
+        RACE_LINE: (r0, z0, nr, nz, 0, 0), point on the line and unit normal into the ring;
+        RACE_LENS: (r1, z1, r2, z2, radius, 0), the two arc centres and PCR_LB.
+        """
+        a, g = self.alpha, self.gamma
+        if self.type == "TRB":
+            r0, z0 = self.to_meridian(0.0, side * 0.5 * self.Dwe)
+            # normal of the generatrix in the roller frame, pointing away from the roller axis
+            nx, ny = -np.sin(g), side * np.cos(g)
+            nr = nx * np.sin(a) + ny * np.cos(a)
+            nz = -nx * np.cos(a) + ny * np.sin(a)
+            return RACE_LINE, np.array([r0, z0, nr, nz, 0.0, 0.0])
+        # TSRB: each raceway arc internally tangent to the roller generatrix at a contact point
+        xc, yc = self.crown_centre
+        centres = []
+        for xk in self.contact_points_x:
+            yk = float(self.roller_radius(xk))
+            nx, ny = (xk - xc) / self.PCR, (yk - yc) / self.PCR  # outward normal of the roller circle
+            cx, cy = xk - self.PCR_LB * nx, yk - self.PCR_LB * ny
+            centres.append(self.to_meridian(cx, side * cy))
+        (r1, z1), (r2, z2) = centres
+        return RACE_LENS, np.array([r1, z1, r2, z2, self.PCR_LB, 0.0])
+
+    def _equivalent_radii(self, side):
+        """Radius of relative curvature in the rolling direction per slice [mm] (Hertz line contact).
+
+        Roller: principal curvature of a surface of revolution, cos(phi)/rho with phi the local
+        generatrix slope; raceway: n_r / r_c at the contact (convex inner, concave outer).
+        """
+        x = self.x_slice
+        rho = self.roller_radius(x)
+        slope = np.arctan(self.roller_profile_slope(x))
+        k_roller = np.cos(slope) / rho
+        # normal at the contact in (r, z): roller frame normal (-sin(slope), side*cos(slope))
+        nr = -np.sin(slope) * np.sin(self.alpha) + side * np.cos(slope) * np.cos(self.alpha)
+        rc, _ = self.to_meridian(x, side * rho)
+        k_race = nr / rc  # > 0 outer (concave seen from the roller), < 0 inner (convex)
+        return 1.0 / (k_roller - k_race)
+
+    def _build_arrays(self):
+        n = self.n_slices
+        x = self.x_slice
+        rho = self.roller_radius(x)
+        kind_o, par_o = self._race_arrays(+1)
+        kind_i, par_i = self._race_arrays(-1)
+        out = {
+            "x": x, "rho": rho, "w": self.slice_width,
+            "race_kind": np.array([kind_o, kind_i], dtype=np.int64),
+            "race_par": np.vstack([par_o, par_i]),
+            "R_eq": np.vstack([self._equivalent_radii(+1), self._equivalent_radii(-1)]),
+        }
+        # roller mass and axial moment of inertia from the profile (solid of revolution)
+        xs = np.linspace(-0.5 * self.Lwe, 0.5 * self.Lwe, 401)
+        rs = self.roller_radius(np.clip(xs, -0.5 * self.Lwe * (1 - 1e-9), 0.5 * self.Lwe * (1 - 1e-9)))
+        out["mass"] = self.density * np.trapezoid(np.pi * rs**2, xs)                 # t
+        out["inertia_axial"] = self.density * np.trapezoid(0.5 * np.pi * rs**4, xs)  # t mm^2
+        if self.type == "TRB":
+            out["rib"] = self._rib_arrays()
+        else:
+            out["rib"] = np.zeros(6)
+        assert out["R_eq"].shape == (2, n)
+        return out
+
+    def _rib_arrays(self):
+        """Roller-end / rib contact of the TRB (thesis 5.5.1; values ASSUMED, see conf/bearing).
+
+        Roller end: sphere of radius R_end = ratio * (apex distance to the large end face),
+        centred on the roller axis. Rib: inner-ring face touching that sphere at the nominal
+        pose at a height e = rib_contact_height_ratio * Dwe above the inner raceway; locally a
+        plane (its curvature is neglected in the Hertz stiffness).
+        Returns (c_x, c_y, R_end, n_x, n_y, 0): sphere centre and unit rib normal (into the rib)
+        in the roller frame.
+        """
+        half = 0.5 * self.Lwe
+        R_end = self.roller_end_radius_ratio * (self.apex_distance + half)
+        rho_large = float(self.roller_radius(half * (1 - 1e-9)))
+        y_c = -(rho_large - self.rib_contact_height_ratio * self.Dwe)
+        cx = half - R_end
+        x_c = cx + np.sqrt(R_end**2 - y_c**2)
+        n = np.array([x_c - cx, y_c]) / R_end
+        return np.array([cx, 0.0, R_end, n[0], n[1], 0.0])
+
+    def summary(self):
+        """Derived values for reports and Dataset attributes."""
+        d = {"gamma_deg": float(np.degrees(self.gamma))}
+        if self.type == "TSRB":
+            d.update(PCR_LB=self.PCR_LB, s=self.s, aA=float(self.aA), x_star=float(self.load_centroid_x),
+                     x_large=float(self.contact_points_x[1]))
+        return d

@@ -1,0 +1,59 @@
+"""Small dense linear solves inside kernels (Gaussian elimination with partial pivoting).
+
+The systems of the slice model are small (at most a few hundred unknowns) and solved
+thousands of times per load case; an in-kernel elimination avoids the per-call overhead of
+a LAPACK round trip and allocates nothing but the work copy.
+"""
+import numpy as np
+
+from sim._jit import kernel
+
+
+@kernel
+def solve_dense(A, B):
+    """Solve A X = B for square A (n x n) and B (n,) or (n x m); returns X (A and B untouched).
+
+    Returns NaN where A is singular to working precision; callers check the result.
+    """
+    n = A.shape[0]
+    M = A.copy()
+    if B.ndim == 1:
+        X = B.copy().reshape((n, 1))
+    else:
+        X = B.copy()
+    m = X.shape[1]
+    for c in range(n):
+        piv = c
+        big = abs(M[c, c])
+        for r in range(c + 1, n):
+            if abs(M[r, c]) > big:
+                big = abs(M[r, c])
+                piv = r
+        if big == 0.0:
+            X[:, :] = np.nan
+            return X.reshape(B.shape)
+        if piv != c:
+            for k in range(n):
+                tmp = M[c, k]
+                M[c, k] = M[piv, k]
+                M[piv, k] = tmp
+            for k in range(m):
+                tmp = X[c, k]
+                X[c, k] = X[piv, k]
+                X[piv, k] = tmp
+        inv = 1.0 / M[c, c]
+        for r in range(c + 1, n):
+            fct = M[r, c] * inv
+            if fct != 0.0:
+                for k in range(c + 1, n):
+                    M[r, k] -= fct * M[c, k]
+                for k in range(m):
+                    X[r, k] -= fct * X[c, k]
+    for c in range(n - 1, -1, -1):
+        inv = 1.0 / M[c, c]
+        for k in range(m):
+            s = X[c, k]
+            for j in range(c + 1, n):
+                s -= M[c, j] * X[j, k]
+            X[c, k] = s * inv
+    return X.reshape(B.shape)
