@@ -15,9 +15,9 @@ Influence numbers (deflection of both bodies per unit line load, mm / (N/mm)):
 
 - i != k (slices far apart compared with b, line load on the roller axis):
   C_ki = 1/(pi E*) ln((|x_k - x_i| + w/2) / (|x_k - x_i| - w/2))   (Boussinesq, Johnson 3.2);
-- i == k: (2/(pi E*)) (ln(w/b) + 1/2 + ln 2), the centre deflection of a strip of length
-  w >> b with semi-elliptic pressure (integral of Johnson eq. 3.20 over the strip; the
-  1/2 + ln 2 is the exact value of -(2/pi) * integral of sqrt(1 - t^2) ln|t| over (-1, 1)).
+- i == k: the centre deflection of the strip itself with its semi-elliptic pressure
+  (:func:`self_deflection`, exact for any w/b); for w >> b it tends to
+  (2/(pi E*)) (ln(w/b) + 1/2 + ln 2).
 
 For a uniformly loaded roller of length L the sum telescopes to
 (2 q/(pi E*)) (ln(L/b) + 1/2 + ln 2), independent of the slice width: the coupled model
@@ -55,9 +55,23 @@ def influence_matrix(x, w, E_star):
     return np.ascontiguousarray(C)
 
 
+# Gauss-Legendre rule for the smooth remainder of the self-deflection integral
+_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(8)
+
+
 @kernel
 def self_deflection(q, w, R, E_star):
     """Deflection of a slice under its own load, and its derivative.
+
+    Centre deflection of both half-spaces under a strip of length w carrying q per unit
+    length with Hertz's semi-elliptic profile of half-width b (Johnson eqs. 3.20, 4.43):
+
+        u = (1/(pi E*)) int_{-b}^{b} p(y) 2 asinh(w / (2|y|)) dy = (8 q / (pi^2 E*)) I(beta),
+        I(beta) = int_0^1 sqrt(1 - t^2) asinh(beta / t) dt,  beta = w / (2 b),
+
+    split as I = (pi/4) ln(2 beta) + (pi/8)(1 + 2 ln 2) + R(beta) with the smooth remainder
+    R = int_0^{pi/2} cos^2(phi) ln((1 + sqrt(1 + sin^2(phi)/beta^2)) / 2) dphi (8-point
+    Gauss-Legendre). For w >> b, R -> 0 and u -> (2q/(pi E*)) (ln(w/b) + 1/2 + ln 2).
 
     Parameters
     ----------
@@ -73,12 +87,24 @@ def self_deflection(q, w, R, E_star):
     Returns
     -------
     u, du/dq : float
-        u [mm] = (2 q/(pi E*)) (ln(w/b) + 1/2 + ln 2), b = sqrt(4 q R/(pi E*)) (module docstring).
+        Deflection [mm] and its derivative [mm^2/N].
     """
     b = np.sqrt(4.0 * q * R / (np.pi * E_star))
-    c = 2.0 / (np.pi * E_star)
-    lw = np.log(w / b)
-    return c * q * (lw + 0.5 + np.log(2.0)), c * (lw + np.log(2.0))
+    beta = 0.5 * w / b
+    rem = 0.0
+    drem = 0.0
+    for i in range(_GL_NODES.shape[0]):
+        phi = 0.25 * np.pi * (_GL_NODES[i] + 1.0)
+        c2 = np.cos(phi) ** 2
+        s2 = np.sin(phi) ** 2
+        root = np.sqrt(1.0 + s2 / (beta * beta))
+        wt = 0.25 * np.pi * _GL_WEIGHTS[i] * c2
+        rem += wt * np.log(0.5 * (1.0 + root))
+        drem += wt * (-(s2 / beta**3) / root) / (1.0 + root)
+    integral = 0.25 * np.pi * np.log(2.0 * beta) + 0.125 * np.pi * (1.0 + 2.0 * np.log(2.0)) + rem
+    dintegral = 0.25 * np.pi / beta + drem
+    c = 8.0 / (np.pi * np.pi * E_star)
+    return c * q * integral, c * (integral - 0.5 * beta * dintegral)
 
 
 @kernel
@@ -223,11 +249,10 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
 @kernel
 def _load_from_self_deflection(u, w, R, E_star):
     """Line load [N/mm] whose self deflection is u [mm] (fixed point on the slowly varying log)."""
-    c = 2.0 / (np.pi * E_star)
-    q = u / (6.0 * c)
+    q = u * np.pi * E_star / 12.0
     for it in range(4):
-        b = np.sqrt(4.0 * q * R / (np.pi * E_star))
-        q = u / (c * (np.log(w / b) + 0.5 + np.log(2.0)))
+        us, dus = self_deflection(q, w, R, E_star)
+        q = q * u / us
     return q
 
 

@@ -112,8 +112,10 @@ def log_crown_drop(x, Dwe, Lwe, coefficient):
 
 
 def _require(condition, name, value, bound):
+    """Raise GeometryError naming the config key (``bearing.`` unless the name carries its group)."""
     if not condition:
-        raise GeometryError(f"bearing.{name} = {value!r} is impossible: it must be {bound}")
+        key = name if "." in name else f"bearing.{name}"
+        raise GeometryError(f"{key} = {value!r} is impossible: it must be {bound}")
 
 
 @dataclass(frozen=True)
@@ -164,9 +166,12 @@ class Geometry:
         for key in common + own:
             if key not in b or b[key] is None:
                 raise GeometryError(f"bearing.{key} is missing: a {kind} needs {', '.join(common + own)}")
+        for key in common + own:
+            _require(isinstance(b[key], (int, float, np.integer, np.floating)) and np.isfinite(float(b[key])),
+                     key, b[key], "a finite number")
         _require(float(b["Z"]) == int(b["Z"]) and int(b["Z"]) >= 3, "Z", b["Z"], "an integer >= 3")
         _require(isinstance(n_slices, (int, np.integer)) and 2 <= n_slices <= 400,
-                 "n_slices (solver.n_slices)", n_slices, "an integer in [2, 400]")
+                 "solver.n_slices", n_slices, "an integer in [2, 400]")
         for key in ("Dpw", "Dwe", "Lwe", "B", "r", "R", "b_m"):
             _require(float(b[key]) > 0.0, key, b[key], "> 0")
         _require(0.0 < float(b["alpha"]) < 60.0, "alpha", b["alpha"], "in (0, 60) deg")
@@ -177,11 +182,7 @@ class Geometry:
         _require(rho > 0.0, "material.density", rho, "> 0")
         alpha = np.radians(float(b["alpha"]))
         Dwe, Dpw = float(b["Dwe"]), float(b["Dpw"])
-        extra = {}
-        if kind == "TSRB":
-            extra = {k: float(b[k]) for k in own}
-        else:
-            extra = {k: float(b[k]) for k in own}
+        extra = {k: float(b[k]) for k in own}
         g = cls(type=kind, alpha=alpha, gamma=taper_angle(alpha, Dwe, Dpw), Dpw=Dpw, Dwe=Dwe,
                 Lwe=float(b["Lwe"]), B=float(b["B"]), r=float(b["r"]), R=float(b["R"]), Z=int(b["Z"]),
                 b_m=float(b["b_m"]), ratings_alpha=float(b["ratings_alpha"]), E=E, nu=nu,
@@ -194,19 +195,21 @@ class Geometry:
         """Refuse geometry that cannot exist (MODEL.md 2), naming parameter and bound."""
         half = 0.5 * self.Lwe
         _require(self.Dwe < self.Dpw, "Dwe", self.Dwe, f"< Dpw = {self.Dpw}")
-        _require(self.r < 0.5 * self.Dpw < self.R, "Dpw", self.Dpw,
-                 f"between 2r = {2 * self.r} and 2R = {2 * self.R}")
+        _require(self.r < 0.5 * self.Dpw, "r", self.r, f"< Dpw/2 = {0.5 * self.Dpw}")
+        _require(0.5 * self.Dpw < self.R, "R", self.R, f"> Dpw/2 = {0.5 * self.Dpw}")
         if self.type == "TSRB":
             _require(0.0 < self.kappa < 1.0, "kappa", self.kappa,
                      "in (0, 1) (kappa = 1 gives PCR_LB = PCR: no two-point contact)")
-            _require(self.PCR > half, "PCR", self.PCR, f"> Lwe/2 = {half} (the crown must span the roller)")
+            bound = half / (1.0 - np.sin(self.gamma))
+            _require(self.PCR > bound, "PCR", self.PCR,
+                     f"> Lwe/(2 (1 - sin(gamma))) = {bound:.3f} (the crown circle must span the roller)")
             _require(self.aP > 0.0, "aP", self.aP, "> 0")
             _require(self.aPk > 0.0, "aPk", self.aPk, "> 0 (first contact point inside the roller)")
             _require(self.aPk + self.aP < self.Lwe, "aPk", self.aPk,
                      f"< Lwe - aP = {self.Lwe - self.aP} (second contact point inside the roller)")
-            crown = self.PCR - np.sqrt(self.PCR**2 - self.Lwe**2)  # generous bound on the end drop
-            _require(crown < 0.5 * self.Dwe * np.cos(self.gamma), "PCR", self.PCR,
-                     "large enough that the roller ends keep a positive radius")
+            rho_ends = self.roller_radius(np.array([-half, half]))
+            _require(rho_ends.min() > 0.1 * self.Dwe, "PCR", self.PCR,
+                     f"large enough that both roller end radii exceed 0.1 Dwe (now {rho_ends.min():.3f} mm)")
         else:
             _require(0.0 < self.crown_coefficient < 0.01, "crown_coefficient", self.crown_coefficient, "in (0, 0.01)")
             _require(0.3 < self.roller_end_radius_ratio <= 1.0, "roller_end_radius_ratio",

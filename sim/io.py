@@ -21,7 +21,7 @@ RACES = ["outer", "inner"]
 # name: (dims after design/case, units, long_name)
 CASE_VARIABLES = {
     "pmax": (("race",), "MPa", "maximum contact pressure over all rollers and slices"),
-    "axial_displacement": ((), "mm", "axial displacement of the most loaded roller along its axis, + towards the large end"),
+    "axial_displacement": ((), "mm", "shift of the most loaded roller along its axis relative to the inner ring, + towards the large end (rib side)"),
     "contact_length_ratio": (("race",), "1", "loaded length / Lwe of the most loaded roller"),
     "L_eff": ((), "mm", "effective (loaded) roller length, shorter of the two raceway contacts"),
     "edge_stress": ((), "1", "end-slice pressure peak above output.edge_stress_ratio times the interior maximum"),
@@ -30,7 +30,7 @@ CASE_VARIABLES = {
     "Q_rib": (("roller",), "N", "roller-end / rib normal load"),
     "pressure": (("race", "slice"), "MPa", "Hertz line-contact pressure along the most loaded roller"),
     "roller_tilt": (("roller",), "deg", "roller tilt in its meridian plane"),
-    "roller_axial_displacement": (("roller",), "mm", "roller shift along its axis, + towards the large end"),
+    "roller_axial_displacement": (("roller",), "mm", "roller shift along its axis relative to the inner ring, + towards the large end"),
     "C_eff": ((), "N", "ISO 281 dynamic load rating with L_eff, thesis (7.1)"),
     "P": ((), "N", "ISO 281 equivalent dynamic load (2.12)"),
     "P0": ((), "N", "ISO 281 equivalent static load (2.8)"),

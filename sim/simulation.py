@@ -132,6 +132,22 @@ class BearingModel:
                     wall_time=wall, ring=ring, poses=poses, line_load=q, pressure=pressure, Q=Q, Q_rib=Qrib)
 
 
+def roller_shift_relative_to_inner_ring(g, xi, ring, tilt):
+    """Roller shift along its axis relative to the inner ring (where a TRB has its rib) [mm].
+
+    xi is measured in the fixed (outer-ring) frame; the inner-ring material point at the
+    nominal roller centre (Dpw/2, 0) moves by Rot(phi) P0 + Delta - P0 in each meridian plane
+    (phi = tilt cos(psi), Delta = (delta_r cos(psi), delta_a)); its component along the roller
+    axis u = (sin(alpha), -cos(alpha)) is subtracted. Positive: towards the large end.
+    """
+    psi = 2.0 * np.pi * np.arange(g.Z) / g.Z
+    phi = tilt * np.cos(psi)
+    r0 = 0.5 * g.Dpw
+    dr = r0 * (np.cos(phi) - 1.0) + ring[1] * np.cos(psi)
+    dz = r0 * np.sin(phi) + ring[0]
+    return xi - (dr * np.sin(g.alpha) - dz * np.cos(g.alpha))
+
+
 def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     """Derived per-case outputs of DATA.md from a solved state (all in output units)."""
     g = model.geometry
@@ -145,6 +161,7 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
         return res
     p = raw["pressure"]                       # (Z, 2, N) MPa
     j = int(np.argmax(raw["Q"].sum(axis=1)))  # most loaded roller
+    xi_rel = roller_shift_relative_to_inner_ring(g, raw["poses"][:, 0], raw["ring"], np.radians(op.tilt))
     thr = float(output_cfg["contact_pressure_threshold"])
     loaded = p[j] > thr                       # (2, N)
     length = loaded.sum(axis=1) * w           # (2,) mm
@@ -155,7 +172,7 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     C_eff = float(ratings.dynamic_load_rating(g.Dwe, g.Dpw, L_eff, g.Z, g.ratings_alpha, g.b_m)) if L_eff > 0 else 0.0
     res.update(
         pmax=p.max(axis=(0, 2)),
-        axial_displacement=float(raw["poses"][j, 0]),
+        axial_displacement=float(xi_rel[j]),
         contact_length_ratio=length / g.Lwe,
         L_eff=L_eff,
         edge_stress=edge,
@@ -164,7 +181,7 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
         Q_rib=raw["Q_rib"],
         pressure=p[j],
         roller_tilt=np.degrees(raw["poses"][:, 2]),
-        roller_axial_displacement=raw["poses"][:, 0],
+        roller_axial_displacement=xi_rel,
         C_eff=C_eff,
         L10=float(ratings.basic_rating_life(C_eff, P)) if C_eff > 0 else 0.0,
         cage_speed=float(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha)),
@@ -176,6 +193,15 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
 def operating_points(load_cfg):
     """The load cases of a ``load`` config node (one case for now)."""
     return [OperatingPoint.from_config(load_cfg)]
+
+
+def build_model(cfg):
+    """Validated :class:`BearingModel` of a composed config (bearing, material, solver)."""
+    settings = SolverSettings.from_config(cfg.solver)
+    geometry = Geometry.from_config(cfg.bearing, cfg.material, settings.n_slices)
+    if "slice_stiffness_iso16281" not in cfg.material:
+        raise InputError("material.slice_stiffness_iso16281 is missing (ISO/TS 16281 line-contact stiffness)")
+    return BearingModel(geometry, cfg.material, settings)
 
 
 def simulate(cfg):
@@ -193,15 +219,11 @@ def simulate(cfg):
     """
     from sim.io import build_dataset
 
-    settings = SolverSettings.from_config(cfg.solver)
-    geometry = Geometry.from_config(cfg.bearing, cfg.material, settings.n_slices)
-    if "slice_stiffness_iso16281" not in cfg.material:
-        raise InputError("material.slice_stiffness_iso16281 is missing (ISO/TS 16281 line-contact stiffness)")
+    model = build_model(cfg)
     ops = operating_points(cfg.load)
-    model = BearingModel(geometry, cfg.material, settings)
     results = []
     for op in ops:
         raw = model.solve(op)
         res = case_results(model, op, raw, cfg.output)
         results.append(res)
-    return build_dataset(geometry, ops, results, OmegaConf.to_yaml(cfg, resolve=True), settings)
+    return build_dataset(model.geometry, ops, results, OmegaConf.to_yaml(cfg, resolve=True), model.settings)

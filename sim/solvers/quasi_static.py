@@ -154,7 +154,7 @@ def roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_p
         sp = np.sin(phi)
         lr = cp * tr + sp * tz
         lz = -sp * tr + cp * tz
-        drib = (lr - l0r) * n0r + (lz - l0z) * n0z
+        drib = (lr - l0r) * n0r + (lz - l0z) * n0z + R_end
         nwr = cp * n0r - sp * n0z
         nwz = sp * n0r + cp * n0z
         Qr, dQ = hertz_point_load(drib, R_end, E_star)
@@ -309,6 +309,9 @@ def solve_bearing(Fa, Fr, tilt, body, alpha, Dpw, Z, x, rho, w, race_kind, race_
     Fres = np.zeros(2)
     Kc = np.zeros((2, 2))
     status = np.zeros(Z, dtype=np.int64)
+    ring_prev = ring.copy()
+    err_prev = np.inf
+    backtracks = 0
     for it_ring in range(max_iter):
         Fres[0] = Fa
         Fres[1] = Fr
@@ -350,18 +353,33 @@ def solve_bearing(Fa, Fr, tilt, body, alpha, Dpw, Z, x, rho, w, race_kind, race_
                         for c in range(3):
                             s -= K[3 + a, c] * X[c, b]
                         Kc[a, b] += mult * s
-        err = abs(Fres[0])
-        if not symmetric:
-            err = max(err, abs(Fres[1]))
+        if symmetric:
+            Fres[1] = 0.0  # delta_r = 0 by symmetry; the radial sum of one roller class is not a residual
+        err = max(abs(Fres[0]), abs(Fres[1]))
         info[1] = Fres[0]
         info[2] = Fres[1]
         if err <= tol * Fscale and nbad == 0:
             converged = True
             break
-        # Newton step on the ring (delta_r frozen in the symmetric case)
+        # backtracking line search on the ring residual (load can jump between rollers under tilt)
+        if (err > err_prev or nbad > 0) and backtracks < 30:
+            backtracks += 1
+            ring[0] = ring_prev[0] + 0.5 * (ring[0] - ring_prev[0])
+            ring[1] = ring_prev[1] + 0.5 * (ring[1] - ring_prev[1])
+            continue
+        if nbad > 0:
+            break  # a roller equilibrium failed: report the case as not converged
+        backtracks = 0
+        err_prev = err
+        ring_prev[0] = ring[0]
+        ring_prev[1] = ring[1]
+        # Newton step on the ring (delta_r frozen in the symmetric case); with no roller
+        # squeezed yet, push the ring further along Fa (bounded by the roller size)
         if symmetric:
             if Kc[0, 0] <= 0.0:
                 ring[0] = 2.0 * ring[0] + 1e-4
+                if ring[0] > body[2]:
+                    break
                 continue
             step0 = Fres[0] / Kc[0, 0]
             step1 = 0.0
@@ -369,6 +387,8 @@ def solve_bearing(Fa, Fr, tilt, body, alpha, Dpw, Z, x, rho, w, race_kind, race_
             det = Kc[0, 0] * Kc[1, 1] - Kc[0, 1] * Kc[1, 0]
             if nload < 2 or abs(det) <= 1e-14 * (Kc[0, 0] * Kc[1, 1] + 1e-300):
                 ring[0] = 2.0 * ring[0] + 1e-4
+                if ring[0] > body[2]:
+                    break
                 continue
             step0 = (Kc[1, 1] * Fres[0] - Kc[0, 1] * Fres[1]) / det
             step1 = (-Kc[1, 0] * Fres[0] + Kc[0, 0] * Fres[1]) / det

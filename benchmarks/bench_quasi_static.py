@@ -1,0 +1,244 @@
+"""Wall-clock timings of the quasi-static bearing solver (``BearingModel.solve``) on one thread.
+
+For the bearings tsrb_reference and trb_32208 and the load cases "combined"
+(Fa 4500 N, Fr 2000 N) and "pure axial" (Fa 4500 N, Fr 0), both at 2000 rpm, tilt 0 and
+oil 55 degC, it reports:
+
+- the first ``solve`` call of each bearing, which includes the numba JIT compile or the
+  load from the on-disk cache (``--no-cache`` compiles everything into a fresh, temporary
+  cache folder, so that this number is the true compile time);
+- after one warm-up call, the median and minimum of ``--repeats`` timed calls in ms, with
+  the iterations, the convergence flag and the target (10 ms combined, 2 ms pure axial);
+- for the pure axial cases, the outer roller-raceway load Q of roller 0 beside the closed
+  form Fa / (Z sin(contact angle)).
+
+Run from the repository root::
+
+    python benchmarks/bench_quasi_static.py [--slices 20] [--repeats 21] [--no-cache] [--netcdf PATH]
+
+Exit code 0 when every case converged, 1 otherwise.
+"""
+import argparse
+import os
+import platform
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from importlib import metadata
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parent.parent
+
+BEARINGS = ["tsrb_reference", "trb_32208"]
+# name: (Fa [N], Fr [N], speed [rpm], tilt [deg], oil temperature [degC], target [ms])
+CASES = {
+    "combined": (4500.0, 2000.0, 2000.0, 0.0, 55.0, 10.0),
+    "pure axial": (4500.0, 0.0, 2000.0, 0.0, 55.0, 2.0),
+}
+TSRB_NOTE = "TSRB: crown shifts the normal, reference only indicative"
+
+
+def parse_args(argv=None):
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--slices", type=int, default=20, help="slices per roller-raceway contact (default 20)")
+    p.add_argument("--repeats", type=int, default=21, help="timed calls per case after one warm-up (default 21)")
+    p.add_argument("--no-cache", action="store_true",
+                   help="compile into a fresh temporary NUMBA_CACHE_DIR (true compile time)")
+    p.add_argument("--netcdf", metavar="PATH", help="also write the table as a NetCDF file")
+    args = p.parse_args(argv)
+    if args.repeats < 1:
+        p.error("--repeats must be >= 1")
+    return args
+
+
+def git_commit():
+    try:
+        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO,
+                             capture_output=True, text=True, timeout=5)
+        return out.stdout.strip() if out.returncode == 0 and out.stdout.strip() else "unknown"
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+
+
+def cpu_model():
+    try:
+        with open("/proc/cpuinfo") as fh:
+            for line in fh:
+                if line.lower().startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or "unknown"
+
+
+def package_version():
+    try:
+        return metadata.version("tsrb-workbench")
+    except metadata.PackageNotFoundError:
+        return "unknown"
+
+
+def timed_solve(model, op):
+    t0 = time.perf_counter()
+    raw = model.solve(op)
+    return time.perf_counter() - t0, raw
+
+
+def main(argv=None):
+    args = parse_args(argv)
+
+    # One core, and the cache mode, before numba (imported by sim) reads its configuration.
+    for var in ("NUMBA_NUM_THREADS", "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ[var] = "1"
+    cache_dir = None
+    if args.no_cache:
+        cache_dir = tempfile.mkdtemp(prefix="bench_numba_cache_")
+        os.environ["NUMBA_CACHE_DIR"] = cache_dir
+    if "numba" in sys.modules:
+        print("warning: numba was imported before the thread/cache settings", file=sys.stderr)
+
+    try:
+        return run(args, cache_dir)
+    finally:
+        if cache_dir is not None:
+            shutil.rmtree(cache_dir, ignore_errors=True)
+
+
+def run(args, cache_dir):
+    import numba
+    import numpy as np
+
+    import sim
+    from sim.simulation import BearingModel, Geometry, OperatingPoint, SolverSettings
+
+    mode = (f"no-cache (fresh NUMBA_CACHE_DIR {cache_dir}: everything compiles)" if cache_dir
+            else f"cache (on-disk numba cache{', NUMBA_CACHE_DIR=' + os.environ['NUMBA_CACHE_DIR'] if 'NUMBA_CACHE_DIR' in os.environ else ''})")
+    print("quasi-static solver benchmark (wall time of BearingModel.solve, time.perf_counter)")
+    print(f"  tsrb-workbench : {package_version()}")
+    print(f"  git commit     : {git_commit()}")
+    print(f"  numba / numpy  : {numba.__version__} / {np.__version__}")
+    print(f"  python         : {platform.python_version()}")
+    print(f"  cpu            : {cpu_model()}")
+    print(f"  slices         : {args.slices}")
+    print(f"  threads        : 1")
+    print(f"  jit mode       : {mode}")
+    print(f"  repeats        : {args.repeats} after 1 warm-up")
+    print()
+
+    rows = []
+    first_calls = []
+    all_converged = True
+    for bearing in BEARINGS:
+        cfg = sim.load_config([f"bearing={bearing}", f"solver.n_slices={args.slices}"])
+        settings = SolverSettings.from_config(cfg.solver)
+        geometry = Geometry.from_config(cfg.bearing, cfg.material, settings.n_slices)
+        model = BearingModel(geometry, cfg.material, settings)
+        first = True
+        for case, (Fa, Fr, speed, tilt, oil, target) in CASES.items():
+            op = OperatingPoint(Fa, Fr, speed, tilt, oil)
+            if first:
+                t, raw = timed_solve(model, op)          # compile or cache load
+                first_calls.append((bearing, case, t, raw["converged"]))
+                all_converged &= raw["converged"]
+                first = False
+            else:
+                timed_solve(model, op)                   # warm-up
+            times = []
+            converged = True
+            iterations = []
+            for _ in range(args.repeats):
+                t, raw = timed_solve(model, op)
+                times.append(t)
+                converged &= raw["converged"]
+                iterations.append(raw["iterations"])
+            all_converged &= converged
+            med_ms = 1e3 * statistics.median(times)
+            min_ms = 1e3 * min(times)
+            its = iterations[-1] if len(set(iterations)) == 1 else f"{min(iterations)}-{max(iterations)}"
+            row = dict(bearing=bearing, case=case, median_ms=med_ms, min_ms=min_ms, target_ms=target,
+                       status="ok" if med_ms <= target else "MISS", iterations=iterations[-1],
+                       iterations_text=str(its), converged=converged, Q=None, Q_ref=None, note="")
+            if Fr == 0.0:
+                angle = geometry.alpha + geometry.gamma      # nominal outer contact normal
+                row["Q"] = float(raw["Q"][0, 0])         # roller 0, outer race
+                row["Q_ref"] = Fa / (geometry.Z * np.sin(angle))
+                row["angle_note"] = "alpha+gamma"
+                if geometry.type == "TSRB":
+                    row["note"] = TSRB_NOTE
+            rows.append(row)
+
+    print("first call per bearing (compile or cache load)")
+    for bearing, case, t, conv in first_calls:
+        print(f"  {bearing:<15} {case:<11} {t:9.3f} s   converged={conv}")
+    print()
+
+    head = (f"{'bearing':<15} {'case':<11} {'median ms':>10} {'min ms':>9} {'target':>7} {'':>4}  "
+            f"{'iter':>4} {'conv':>5}  {'Q_out[0] N':>11} {'reference N':>11} {'dev':>8}  angle")
+    print(head)
+    print("-" * len(head))
+    for r in rows:
+        line = (f"{r['bearing']:<15} {r['case']:<11} {r['median_ms']:10.3f} {r['min_ms']:9.3f} "
+                f"{r['target_ms']:7.1f} {r['status']:>4}  {r['iterations_text']:>4} {str(r['converged']):>5}  ")
+        if r["Q"] is not None:
+            dev = (r["Q"] - r["Q_ref"]) / r["Q_ref"]
+            line += f"{r['Q']:11.2f} {r['Q_ref']:11.2f} {100 * dev:+7.2f}%  {r['angle_note']}"
+        else:
+            line += f"{'-':>11} {'-':>11} {'-':>8}"
+        print(line)
+    print()
+    print("reference: Q_out of roller 0 vs Fa / (Z sin(alpha+gamma)), the nominal outer contact angle; dev = Q/ref - 1")
+    for note in sorted({r["note"] for r in rows if r["note"]}):
+        print(f"note: {note}")
+    print(f"all cases converged: {all_converged}")
+
+    if args.netcdf:
+        write_netcdf(rows, args, cache_dir)
+        print(f"written: {args.netcdf}")
+    return 0 if all_converged else 1
+
+
+def write_netcdf(rows, args, cache_dir):
+    import numpy as np
+    import xarray as xr
+
+    from sim.io import write_netcdf_atomic
+
+    cases = list(CASES)
+    shape = (len(BEARINGS), len(cases))
+    med = np.full(shape, np.nan)
+    mn = np.full(shape, np.nan)
+    its = np.zeros(shape, dtype=np.int32)
+    for r in rows:
+        i, j = BEARINGS.index(r["bearing"]), cases.index(r["case"])
+        med[i, j], mn[i, j], its[i, j] = r["median_ms"], r["min_ms"], r["iterations"]
+    dims = ("bearing", "case")
+    ds = xr.Dataset(
+        {
+            "median_ms": (dims, med, {"units": "ms", "long_name": "median wall time of BearingModel.solve"}),
+            "min_ms": (dims, mn, {"units": "ms", "long_name": "minimum wall time of BearingModel.solve"}),
+            "iterations": (dims, its, {"units": "1", "long_name": "ring Newton iterations"}),
+        },
+        coords={
+            "bearing": ("bearing", BEARINGS, {"long_name": "bearing config"}),
+            "case": ("case", cases, {"long_name": "load case"}),
+            "target_ms": ("case", [CASES[c][5] for c in cases], {"units": "ms", "long_name": "target wall time"}),
+        },
+        attrs={
+            "title": "quasi-static solver benchmark",
+            "package_version": package_version(),
+            "git_commit": git_commit(),
+            "cpu": cpu_model(),
+            "n_slices": args.slices,
+            "repeats": args.repeats,
+            "threads": 1,
+            "jit_mode": "no-cache" if cache_dir else "cache",
+        },
+    )
+    write_netcdf_atomic(ds, args.netcdf)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
