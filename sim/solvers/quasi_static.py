@@ -195,9 +195,13 @@ def solve_roller(pose, ring, phi, cpsi, body, alpha, Dpw, x, rho, w, race_kind, 
     ftmp = np.empty(NY)
     Ktmp = np.empty((NY, NY))
     Qtmp = np.empty(4)
+    have_state = False  # the accepted line-search trial already holds the state at ``pose``
+    ok = True
     for it in range(max_iter):
-        ok = roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                          mode, k_line, rib, has_rib, q, active, 1e-13, f, K, Qout)
+        if not have_state:
+            ok = roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
+                              mode, k_line, rib, has_rib, q, active, 1e-13, f, K, Qout)
+        have_state = False
         if Qout[3] <= 0.0:
             # rings do not squeeze this roller: unloaded, held by the cage
             for a in range(NY):
@@ -250,8 +254,8 @@ def solve_roller(pose, ring, phi, cpsi, body, alpha, Dpw, x, rho, w, race_kind, 
                 trial[a] = pose[a] + t * step[a]
             qs = q.copy()
             acts = active.copy()
-            roller_state(trial, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                         mode, k_line, rib, has_rib, qs, acts, 1e-13, ftmp, Ktmp, Qtmp)
+            ok_trial = roller_state(trial, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C,
+                                    E_star, mode, k_line, rib, has_rib, qs, acts, 1e-13, ftmp, Ktmp, Qtmp)
             tur, tuz, tvr, tvz = roller_axes(alpha, trial[2])
             e0 = ftmp[0] + body[0] * tur
             e1 = ftmp[1] + body[0] * tvr
@@ -261,6 +265,13 @@ def solve_roller(pose, ring, phi, cpsi, body, alpha, Dpw, x, rho, w, race_kind, 
             t *= 0.5
         for a in range(3):
             pose[a] = trial[a]
+        q[:, :] = qs
+        active[:, :] = acts
+        f[:] = ftmp
+        K[:, :] = Ktmp
+        Qout[:] = Qtmp
+        ok = ok_trial
+        have_state = True
     return 0, max_iter
 
 
