@@ -20,9 +20,7 @@ the two disks, so the penetration is the larger of the two arcs' penetrations).
 import numpy as np
 
 from sim._jit import kernel
-
-RACE_LINE = 0
-RACE_LENS = 1
+from sim.geometry import RACE_LENS, RACE_LINE  # noqa: F401  (profile kinds, defined once)
 
 
 @kernel

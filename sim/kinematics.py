@@ -47,8 +47,8 @@ def roller_speed_rolling(n_inner, n_outer, Dwe, Dpw, alpha):
     Returns
     -------
     float
-        n_R [rpm] = (Dpw/Dwe - Dwe cos^2(alpha)/Dpw) (n_OR - n_IR)/2, eq. (2.22); negative for
-        a rotating inner ring in the thesis's sign, returned here as its magnitude's sign
-        convention: positive about the roller axis towards the large end (sim.geometry u).
+        n_R [rpm] = (Dpw/Dwe - Dwe cos^2(alpha)/Dpw) (n_IR - n_OR)/2: the magnitude of eq. (2.22),
+        signed positive about the roller axis u (towards the large end, sim.geometry) for a
+        faster inner ring; eq. (2.22) itself carries the opposite sign.
     """
-    return -(Dpw / Dwe - Dwe * np.cos(alpha) ** 2 / Dpw) * 0.5 * (n_outer - n_inner)
+    return (Dpw / Dwe - Dwe * np.cos(alpha) ** 2 / Dpw) * 0.5 * (n_inner - n_outer)
