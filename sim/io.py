@@ -15,6 +15,7 @@ import numpy as np
 import xarray as xr
 
 from sim import ratings
+from sim.friction import COMPONENTS
 
 RACES = ["outer", "inner"]
 
@@ -35,12 +36,20 @@ CASE_VARIABLES = {
     "P": ((), "N", "ISO 281 equivalent dynamic load (2.12)"),
     "P0": ((), "N", "ISO 281 equivalent static load (2.8)"),
     "L10": ((), "1e6 rev", "basic rating life with C_eff (2.15)"),
-    "cage_speed": ((), "rpm", "cage speed, rolling without slip (2.20)"),
+    "cage_speed": ((), "rpm", "cage speed: from the traction balance with friction, else rolling without slip (2.20)"),
+    "torque": ((), "N*mm", "frictional torque of the bearing (on the outer ring)"),
+    "torque_component": (("component",), "N*mm", "torque breakdown by loss mechanism (power / inner-ring speed)"),
+    "power_loss": ((), "W", "frictional power loss"),
+    "srr": (("race", "slice"), "1", "slide-to-roll ratio along the most loaded roller, roller against ring (2.25)"),
+    "film_thickness": (("race", "slice"), "um", "central EHL film thickness along the most loaded roller"),
+    "lambda_ratio": (("race",), "1", "specific film thickness at the most loaded slice (2.27)"),
     "residual": (("direction",), "N", "inner-ring force residual at the solution"),
     "converged": ((), "1", "solver converged"),
     "iterations": ((), "1", "ring Newton iterations"),
     "wall_time": ((), "s", "solver wall time of the case"),
 }
+# written only when some case computed them (friction enabled)
+OPTIONAL_VARIABLES = {"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio"}
 INTEGER_OR_BOOL = {"converged": bool, "edge_stress": bool, "iterations": np.int32}
 
 
@@ -89,9 +98,11 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     settings : sim.simulation.SolverSettings
     """
     g = geometry
-    sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 2}
+    sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 2, "component": len(COMPONENTS)}
     data = {}
     for name, (dims, units, long_name) in CASE_VARIABLES.items():
+        if name in OPTIONAL_VARIABLES and not any(name in res for res in results):
+            continue    # friction disabled: no torque variables, never placeholders
         arr = _case_array(name, dims, results, sizes)
         data[name] = xr.Variable(("design", "case") + dims, arr, {"units": units, "long_name": long_name})
     C = ratings.dynamic_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha, g.b_m)
@@ -101,6 +112,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     coords = {
         "race": ("race", RACES, {"long_name": "raceway"}),
         "direction": ("direction", ["axial", "radial"], {"long_name": "inner-ring direction"}),
+        "component": ("component", COMPONENTS, {"long_name": "friction loss mechanism"}),
         "roller": ("roller", np.arange(g.Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
         "slice": ("slice", np.arange(g.n_slices), {"long_name": "slice index from the large end", "units": "1"}),
         "x_slice": ("slice", g.x_slice_from_large_end, {"units": "mm", "long_name": "slice centre from the large end"}),
@@ -127,14 +139,15 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
         "Conventions": "CF-1.10",
-        "title": f"{g.type} quasi-static load distribution",
+        "title": f"{g.type} quasi-static load distribution and friction",
         "package_version": _version(),
         "git_commit": _git_commit(),
         "config": config_yaml,
         "solver": "quasi_static",
         "solver_settings": str(settings),
         "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
-        "sources": "thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004",
+        "sources": ("thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004; ZhouHoeprich1991; PanHamrock1989; "
+                    "HamrockDowson1977; BairWiner1979; JohnsonTevaarwerk1977"),
     })
     return ds
 

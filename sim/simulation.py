@@ -204,13 +204,46 @@ def build_model(cfg):
     return BearingModel(geometry, cfg.material, settings)
 
 
+def build_friction(cfg, model):
+    """Validated :class:`sim.friction.FrictionModel` of a composed config, or None when
+    ``friction.enabled`` is false (then no torque variable is written)."""
+    from sim.friction import FrictionModel
+    from sim.lubricant import Lubricant
+
+    if not bool(cfg.friction.enabled):
+        return None
+    if "surface" not in cfg.bearing:
+        raise InputError("bearing.surface is missing (roughness sigma and Zhou-Hoeprich B_ZH, C_ZH, thesis (5.16))")
+    return FrictionModel(model.geometry, model.E_star, Lubricant.from_config(cfg.lubricant), cfg.friction,
+                         cfg.bearing.surface)
+
+
+def solve_case(model, friction, op, output_cfg):
+    """Load distribution, then kinematics and friction of one case; DATA.md outputs (output units).
+
+    A case counts as converged only when both the load distribution and the traction
+    kinematics converged; otherwise only its status and the load-derived P, P0 are kept.
+    """
+    raw = model.solve(op)
+    res = case_results(model, op, raw, output_cfg)
+    if friction is None or not res["converged"]:
+        return res
+    t0 = time.perf_counter()
+    fr = friction.evaluate(op, raw)
+    if not fr.pop("friction_converged"):
+        return {key: res[key] for key in ("iterations", "wall_time", "P", "P0")} | {"converged": False}
+    res.update(fr)
+    res["wall_time"] += time.perf_counter() - t0
+    return res
+
+
 def simulate(cfg):
     """Run the configured bearing through every load case of ``cfg.load``.
 
     Parameters
     ----------
     cfg : omegaconf.DictConfig
-        Composed config (``sim.load_config``): bearing, material, load, solver, output.
+        Composed config (``sim.load_config``): bearing, material, lubricant, friction, load, solver, output.
 
     Returns
     -------
@@ -220,10 +253,7 @@ def simulate(cfg):
     from sim.io import build_dataset
 
     model = build_model(cfg)
+    friction = build_friction(cfg, model)
     ops = operating_points(cfg.load)
-    results = []
-    for op in ops:
-        raw = model.solve(op)
-        res = case_results(model, op, raw, cfg.output)
-        results.append(res)
+    results = [solve_case(model, friction, op, cfg.output) for op in ops]
     return build_dataset(model.geometry, ops, results, OmegaConf.to_yaml(cfg, resolve=True), model.settings)

@@ -70,12 +70,20 @@ def test_command_line_writes_checked_result(tmp_path):
     result = tmp_path / "result.nc"
     ds = xr.open_dataset(result)
     assert bool(ds.converged.all()) and ds.sizes["design"] == 1 and ds.sizes["case"] == 1
-    assert "torque" not in ds  # no friction model yet: no placeholder torque
+    assert float(ds.torque.squeeze()) > 0.0 and "torque_component" in ds and "film_thickness" in ds
     ds.close()
     checker = REPO.parent / "shared" / "tools" / "check_result.py"
     if checker.exists():
         chk = subprocess.run([sys.executable, str(checker), str(result)], capture_output=True, text=True)
         assert chk.returncode == 0, chk.stdout
+
+
+def test_friction_disabled_writes_no_torque():
+    """With friction.enabled=false the result holds the load distribution only: no placeholder torque."""
+    ds = sim.simulate(sim.load_config(["bearing=trb_32208", "friction.enabled=false", "solver.n_slices=10"]))
+    assert bool(ds.converged.all())
+    for name in ("torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio"):
+        assert name not in ds
 
 
 def test_bad_load_input_is_refused():

@@ -1,0 +1,97 @@
+"""Lubricant properties at the oil temperature of a load case (MODEL.md 5).
+
+Viscosity-temperature: Ubbelohde-Walther, DIN 51563 / ASTM D341,
+``log10(log10(nu + 0.7)) = A - B log10(T)`` with nu in mm^2/s and T in K, fitted through the
+points of the lubricant config (two points) or through one point with a given slope B.
+Density: linear in temperature. Pressure-viscosity: Barus, ``eta(p) = eta0 exp(alpha p)``
+(used by :mod:`sim.ehl`). Every parameter comes from ``conf/lubricant/*.yaml``.
+"""
+from dataclasses import dataclass
+
+import numpy as np
+
+from sim.simulation import InputError
+
+#: Walther's constant [mm^2/s] (DIN 51563, ASTM D341).
+WALTHER_SHIFT = 0.7
+#: 0 degC in K.
+ZERO_CELSIUS = 273.15
+
+
+def _walther(nu):
+    return np.log10(np.log10(nu + WALTHER_SHIFT))
+
+
+@dataclass(frozen=True)
+class Lubricant:
+    """Oil of one ``lubricant`` config node.
+
+    Attributes: Walther constants ``A``, ``B`` [1]; density [kg/m^3] at ``density_temperature``
+    [degC] with ``density_slope`` [kg/(m^3 K)]; Barus ``pressure_viscosity`` [1/MPa]; limiting
+    shear stress ``tau_L = limiting_shear_stress_0 + limiting_shear_coefficient p`` [MPa]; the
+    elastic ``shear_modulus`` of the film [MPa] (Maxwell traction at low slip).
+    """
+
+    name: str
+    A: float
+    B: float
+    density_temperature: float
+    density_ref: float
+    density_slope: float
+    pressure_viscosity: float
+    limiting_shear_stress_0: float
+    limiting_shear_coefficient: float
+    shear_modulus: float
+
+    @classmethod
+    def from_config(cls, lub):
+        T = [float(t) for t in lub["temperature"]]
+        nu = [float(v) for v in lub["viscosity"]]
+        if len(T) != len(nu) or not 1 <= len(T) <= 2:
+            raise InputError(f"lubricant.temperature / lubricant.viscosity: need one or two matching points, "
+                             f"got {len(T)} temperatures and {len(nu)} viscosities")
+        for v in nu:
+            if not v > 0.0:
+                raise InputError(f"lubricant.viscosity = {v!r} is outside the allowed range (0, inf) mm^2/s")
+        logT = [np.log10(t + ZERO_CELSIUS) for t in T]
+        if len(T) == 2:
+            if T[0] == T[1] or (nu[0] - nu[1]) * (T[1] - T[0]) <= 0.0:
+                raise InputError(f"lubricant.viscosity = {nu} must fall with lubricant.temperature = {T}")
+            B = (_walther(nu[0]) - _walther(nu[1])) / (logT[1] - logT[0])
+        else:
+            if lub.get("walther_slope") is None:
+                raise InputError("lubricant.walther_slope is required when only one viscosity point is given")
+            B = float(lub["walther_slope"])
+            if not 1.0 <= B <= 6.0:
+                raise InputError(f"lubricant.walther_slope = {B!r} is outside the allowed range [1, 6]")
+        A = _walther(nu[0]) + B * logT[0]
+        alpha_p = float(lub["pressure_viscosity"])
+        if not 0.0 <= alpha_p <= 0.1:
+            raise InputError(f"lubricant.pressure_viscosity = {alpha_p!r} is outside the allowed range [0, 0.1] 1/MPa")
+        rho = float(lub["density"])
+        if not 500.0 <= rho <= 1500.0:
+            raise InputError(f"lubricant.density = {rho!r} is outside the allowed range [500, 1500] kg/m^3")
+        c = float(lub["limiting_shear_coefficient"])
+        if not 0.0 < c <= 0.5:
+            raise InputError(f"lubricant.limiting_shear_coefficient = {c!r} is outside the allowed range (0, 0.5]")
+        t0 = float(lub["limiting_shear_stress_0"])
+        if not 0.0 <= t0 <= 100.0:
+            raise InputError(f"lubricant.limiting_shear_stress_0 = {t0!r} is outside the allowed range [0, 100] MPa")
+        G = float(lub["shear_modulus"])
+        if not 10.0 <= G <= 1e5:
+            raise InputError(f"lubricant.shear_modulus = {G!r} is outside the allowed range [10, 1e5] MPa")
+        return cls(str(lub["name"]), A, B, float(lub["density_temperature"]), rho, float(lub["density_slope"]),
+                   alpha_p, t0, c, G)
+
+    def kinematic_viscosity(self, temperature):
+        """nu [mm^2/s] at ``temperature`` [degC] (Ubbelohde-Walther, DIN 51563)."""
+        w = self.A - self.B * np.log10(np.asarray(temperature, dtype=float) + ZERO_CELSIUS)
+        return 10.0 ** (10.0 ** w) - WALTHER_SHIFT
+
+    def density(self, temperature):
+        """rho [kg/m^3] at ``temperature`` [degC], linear in temperature."""
+        return self.density_ref + self.density_slope * (np.asarray(temperature, dtype=float) - self.density_temperature)
+
+    def dynamic_viscosity(self, temperature):
+        """eta0 [Pa s] = nu rho at ambient pressure and ``temperature`` [degC]."""
+        return self.kinematic_viscosity(temperature) * 1e-6 * self.density(temperature)
