@@ -514,12 +514,14 @@ def solve_kinematics_newton(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Q
         num = T.sum()
         den = dTdc.sum()
         for j in range(Z):
-            if active[j]:
+            if active[j] and dMdw[j] != 0.0:
                 num -= dTdw[j] * M[j] / dMdw[j]
                 den -= dTdw[j] * dMdc[j] / dMdw[j]
+        if den == 0.0:
+            return wc, False
         dc = -num / den
         for j in range(Z):
-            dw[j] = -(M[j] + dMdc[j] * dc) / dMdw[j] if active[j] else 0.0
+            dw[j] = -(M[j] + dMdc[j] * dc) / dMdw[j] if active[j] and dMdw[j] != 0.0 else 0.0
         step = 1.0
         accepted = False
         for ls in range(30):
@@ -650,7 +652,8 @@ class FrictionModel:
         # symmetry: pure axial untilted, every roller alike; untilted, roller j mirrors roller Z - j
         symmetric = op.Fr == 0.0 and op.tilt == 0.0
         mirrored = op.tilt == 0.0
-        active = load > 0.0
+        # rollers below the kinematic tolerance of the most loaded one cannot move the balances
+        active = load > self.tolerance * load.max()
         weight = np.ones(Z)
         if symmetric:
             active[1:] = False

@@ -1,0 +1,155 @@
+"""Frictional torque of whole bearings: energy balance, kinematics, trends and the thesis's 7.2 directions.
+
+MODEL.md 5 and issue "Simulation core II". Loads in N, speeds in rpm, torque in N mm.
+"""
+import numpy as np
+import pytest
+
+import sim
+from sim.kinematics import cage_speed_rolling
+
+
+def run(bearing, *overrides):
+    """One case of ``bearing`` (conf defaults: Fa 4.5 kN, Fr 2 kN, 2000 rpm, FVA 3 at 55 degC)."""
+    ds = sim.simulate(sim.load_config([f"bearing={bearing}", *overrides]))
+    case = ds.isel(design=0, case=0)
+    assert bool(case.converged), f"{bearing} {overrides} did not converge"
+    return case
+
+
+def share(case, component):
+    return float(case.torque_component.sel(component=component)) / float(case.torque)
+
+
+ENERGY_CASES = [
+    ("trb_32208", ["load.Fr=0"]),
+    ("trb_32208", ["load.Fa=40000", "load.Fr=0"]),
+    ("trb_32208", ["load.Fr=4000"]),
+    ("tsrb_reference", ["load.Fr=0"]),
+    ("tsrb_reference", ["load.Fr=4000", "load.tilt=0.02"]),
+    ("tsrb_prototype", ["load.Fr=2000", "load.speed=1000", "load.oil_temperature=60"]),
+    ("tsrb_pinion", ["load.Fa=35000", "load.Fr=0", "load.speed=1100", "lubricant=pinion_oil",
+                     "load.oil_temperature=50"]),
+]
+
+
+@pytest.mark.parametrize("bearing,overrides", ENERGY_CASES)
+def test_outer_ring_torque_equals_power_over_speed(bearing, overrides):
+    """At the traction equilibrium (every roller's spin moment and the cage's moment zero) the
+    torque the rollers exert on the outer ring equals power loss / inner-ring speed (energy
+    balance, MODEL.md 5). Both are computed independently: the torque from contact forces and
+    couples, the power from the dissipation of each mechanism. The kinematic tolerance
+    (friction.tolerance = 1e-6 of mu Q Dpw/2) bounds the mismatch far below the 1 % the issue
+    demands; 1e-3 leaves room for the residual of every roller adding up."""
+    case = run(bearing, *overrides)
+    omega_i = np.pi * float(case.speed) / 30.0
+    torque_from_power = float(case.power_loss) * 1e3 / omega_i        # W -> N mm/s, / rad/s
+    assert float(case.torque) > 0.0
+    assert abs(float(case.torque) - torque_from_power) <= 1e-3 * float(case.torque)
+    np.testing.assert_allclose(float(case.torque_component.sum()), float(case.torque), rtol=1e-12)
+    assert bool((case.torque_component.sel(component=["rolling", "hysteresis", "drilling", "rib", "cage"]) >= 0).all())
+
+
+def test_cage_speed_follows_rolling_kinematics_under_load():
+    """A loaded bearing slips little: the cage speed from the traction balance stays within 1 %
+    of rolling without slip (2.20) (the friction moments are 1e-3 of the traction capacity), and
+    is below it (the cage lags, losses brake the rollers)."""
+    for bearing in ("trb_32208", "tsrb_reference"):
+        case = run(bearing)
+        g = sim.simulation.build_model(sim.load_config([f"bearing={bearing}"])).geometry
+        rolling = cage_speed_rolling(2000.0, 0.0, g.Dwe, g.Dpw, g.alpha)
+        assert abs(float(case.cage_speed) - rolling) < 0.01 * rolling
+
+
+def test_srr_of_crowned_roller_changes_sign_along_the_roller():
+    """A crowned TSRB roller rolls without slip at two points only and slides elsewhere, with
+    opposite signs on either side of a rolling point (thesis 2.3.1, Fig. 2.17, Figs. 7.4-7.5);
+    the TRB's tapered roller rolls on a common apex and its SRR stays near zero along the roller."""
+    proto = run("tsrb_prototype", "load.Fr=0").srr.sel(race="outer").values
+    loaded = proto[np.isfinite(proto)]
+    assert loaded.max() > 0.0 > loaded.min()
+    assert np.abs(loaded).max() > 0.01          # percent-level differential slip
+    trb = run("trb_32208", "load.Fr=0").srr.sel(race="outer").values
+    assert np.nanmax(np.abs(trb)) < 0.1 * np.abs(loaded).max()
+
+
+@pytest.mark.parametrize("bearing", ["trb_32208", "tsrb_reference"])
+def test_torque_rises_with_speed(bearing):
+    """Thesis 7.2.5 / sensitivity_directions.speed: torque rises with speed for both bearings
+    (1000, 2000, 4000 rpm; the thesis's three speeds)."""
+    torques = [float(run(bearing, "load.Fr=0", f"load.speed={n}").torque) for n in (1000, 2000, 4000)]
+    assert torques[0] < torques[1] < torques[2]
+
+
+@pytest.mark.parametrize("bearing", ["trb_32208", "tsrb_reference"])
+def test_torque_rises_with_viscosity(bearing):
+    """Colder oil is more viscous: in the EHL regime (Lambda > 1 at 40-55 degC) the hydrodynamic
+    rolling resistance grows with eta0^0.66 and the torque rises (Stribeck curve right of its
+    minimum, thesis 2.3.2)."""
+    cold = run(bearing, "load.Fr=0", "load.oil_temperature=40")
+    warm = run(bearing, "load.Fr=0", "load.oil_temperature=55")
+    assert float(cold.lambda_ratio.min()) > 1.0
+    assert float(cold.torque) > float(warm.torque)
+
+
+def test_rib_friction_dominates_trb_at_low_lambda():
+    """Thesis 2.2.1 and 7.2: the roller-end/rib contact is a large share of the TRB's torque in
+    mixed friction. At Lambda < 0.5 (90 degC, 300 rpm) the rib takes most of the torque; in the
+    EHL regime (55 degC, 2000 rpm) it is a minor share."""
+    low = run("trb_32208", "load.Fr=0", "load.oil_temperature=90", "load.speed=300")
+    high = run("trb_32208", "load.Fr=0")
+    assert float(low.lambda_ratio.max()) < 0.5 < 1.0 < float(high.lambda_ratio.min())
+    assert share(low, "rib") > 0.5
+    assert share(high, "rib") < share(low, "rib")
+    assert float(run("tsrb_reference", "load.Fr=0").torque_component.sel(component="rib")) == 0.0
+
+
+@pytest.mark.parametrize("Fa,Fr", [(4000, 0), (4000, 4000)])
+def test_drilling_is_the_largest_raceway_loss_of_the_tsrb(Fa, Fr):
+    """Thesis 7.1-7.2: the crowned TSRB pays drilling friction for having no rib; at the
+    reference conditions it is the largest of its roller-raceway losses."""
+    case = run("tsrb_reference", f"load.Fa={Fa}", f"load.Fr={Fr}")
+    raceway = {c: share(case, c) for c in ("rolling", "hysteresis", "sliding", "drilling")}
+    assert max(raceway, key=raceway.get) == "drilling"
+
+
+VARIANTS = {   # thesis Table 7.2 (PCR down: 36 is the aA = 0 limit, so the nearest sound value 50 is used)
+    "PCR_up": ["bearing.PCR=122.5"], "PCR_down": ["bearing.PCR=50"],
+    "alpha_up": ["bearing.alpha=18", "bearing.ratings_alpha=18"],
+    "alpha_down": ["bearing.alpha=10", "bearing.ratings_alpha=10"],
+    "kappa_up": ["bearing.kappa=0.99"], "kappa_down": ["bearing.kappa=0.90"],
+    "aP_up": ["bearing.aP=10", "bearing.aPk=3.5"],
+}
+# thesis_data.yaml sensitivity_directions: +1 up, -1 down (aPk and two pmax entries: see README, known deviations)
+DIRECTIONS = {
+    "PCR_up": {"torque": -1, "axial_displacement": +1},
+    "PCR_down": {"torque": +1, "axial_displacement": -1},
+    "alpha_up": {"torque": -1, "contact_length_ratio": -1},
+    "alpha_down": {"torque": +1, "contact_length_ratio": +1},
+    "kappa_up": {"torque": +1, "contact_length_ratio": +1},
+    "kappa_down": {"torque": -1, "contact_length_ratio": -1, "pmax": +1},
+    "aP_up": {"axial_displacement": -1},
+}
+
+
+def quantity(case, name):
+    value = case[name]
+    if "race" in value.dims:
+        value = value.sel(race="outer")
+    return float(value)
+
+
+@pytest.mark.parametrize("Fa,Fr", [(4000, 0), (4000, 4000)])
+def test_sensitivity_directions_of_thesis_7_2(Fa, Fr):
+    """Every direction of thesis 7.2 that our model reproduces, one parameter at a time from
+    tsrb_reference, on two load scenarios of Fig. 7.6 (pure axial and combined)."""
+    load = [f"load.Fa={Fa}", f"load.Fr={Fr}"]
+    base = run("tsrb_reference", *load)
+    for variant, overrides in VARIANTS.items():
+        case = run("tsrb_reference", *load, *overrides)
+        for name, sign in DIRECTIONS[variant].items():
+            change = quantity(case, name) - quantity(base, name)
+            assert np.sign(change) == sign, f"{variant}: {name} changed by {change:+.4g}, thesis says {sign:+d}"
+    # alpha up: about -25 % torque in the thesis; accept -10 to -40 % (one model against another)
+    alpha_up = run("tsrb_reference", *load, *VARIANTS["alpha_up"])
+    assert -0.40 < float(alpha_up.torque) / float(base.torque) - 1.0 < -0.10
