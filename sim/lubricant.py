@@ -45,8 +45,19 @@ class Lubricant:
 
     @classmethod
     def from_config(cls, lub):
-        T = [float(t) for t in lub["temperature"]]
-        nu = [float(v) for v in lub["viscosity"]]
+        for key in ("name", "temperature", "viscosity", "density", "density_temperature", "density_slope",
+                    "pressure_viscosity", "limiting_shear_coefficient", "limiting_shear_stress_0", "shear_modulus"):
+            if key not in lub:
+                raise InputError(f"lubricant.{key} is missing")
+        try:
+            T = [float(t) for t in lub["temperature"]]
+            nu = [float(v) for v in lub["viscosity"]]
+        except TypeError:
+            raise InputError(f"lubricant.temperature = {lub['temperature']!r} and lubricant.viscosity = "
+                             f"{lub['viscosity']!r} must be lists of one or two numbers") from None
+        for temp in T:
+            if not -40.0 <= temp <= 200.0:
+                raise InputError(f"lubricant.temperature = {temp!r} is outside the allowed range [-40, 200] degC")
         if len(T) != len(nu) or not 1 <= len(T) <= 2:
             raise InputError(f"lubricant.temperature / lubricant.viscosity: need one or two matching points, "
                              f"got {len(T)} temperatures and {len(nu)} viscosities")
@@ -57,7 +68,13 @@ class Lubricant:
         if len(T) == 2:
             if T[0] == T[1] or (nu[0] - nu[1]) * (T[1] - T[0]) <= 0.0:
                 raise InputError(f"lubricant.viscosity = {nu} must fall with lubricant.temperature = {T}")
+            if lub.get("walther_slope") is not None:
+                raise InputError("lubricant.walther_slope must be null when two viscosity points are given "
+                                 "(the slope is fitted through them)")
             B = (_walther(nu[0]) - _walther(nu[1])) / (logT[1] - logT[0])
+            if not 1.0 <= B <= 6.0:
+                raise InputError(f"lubricant.viscosity = {nu} at {T} degC gives a Walther slope {B:.4g} outside "
+                                 f"the allowed range [1, 6] of mineral and synthetic oils")
         else:
             if lub.get("walther_slope") is None:
                 raise InputError("lubricant.walther_slope is required when only one viscosity point is given")
@@ -77,11 +94,13 @@ class Lubricant:
         t0 = float(lub["limiting_shear_stress_0"])
         if not 0.0 <= t0 <= 100.0:
             raise InputError(f"lubricant.limiting_shear_stress_0 = {t0!r} is outside the allowed range [0, 100] MPa")
+        ds = float(lub["density_slope"])
+        if not -5.0 <= ds <= 0.0:
+            raise InputError(f"lubricant.density_slope = {ds!r} is outside the allowed range [-5, 0] kg/(m^3 K)")
         G = float(lub["shear_modulus"])
         if not 10.0 <= G <= 1e5:
             raise InputError(f"lubricant.shear_modulus = {G!r} is outside the allowed range [10, 1e5] MPa")
-        return cls(str(lub["name"]), A, B, float(lub["density_temperature"]), rho, float(lub["density_slope"]),
-                   alpha_p, t0, c, G)
+        return cls(str(lub["name"]), A, B, float(lub["density_temperature"]), rho, ds, alpha_p, t0, c, G)
 
     def kinematic_viscosity(self, temperature):
         """nu [mm^2/s] at ``temperature`` [degC] (Ubbelohde-Walther, DIN 51563)."""
