@@ -457,8 +457,8 @@ def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib
 
 
 @kernel
-def solve_kinematics_newton(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                            w, prib, hrib, Phirib, par, tq, wq, tol_M, tol_T, max_iter, totals):
+def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh,
+                            Fy, R_eq, w, prib, hrib, Phirib, par, tq, wq, tol_M, tol_T, max_iter, totals):
     """Newton on all roller speeds and the cage speed together (arrow-shaped Jacobian).
 
     Roller j's spin moment depends on its own speed and the cage speed only, so the Jacobian
@@ -466,7 +466,9 @@ def solve_kinematics_newton(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Q
     1e-7 of the speed, a relative step near the square root of the double precision) and
     eliminated in O(Z). Backtracking on the scaled residual norm keeps the iteration
     monotone. Same arguments and return value as :func:`solve_kinematics`; wR and wc are
-    start values (rolling kinematics or a previous solution).
+    start values (rolling kinematics or a previous solution). ``presolve``: first bring every
+    roller to its own moment balance at the start cage speed (for a start far away, such as
+    rolling kinematics of a crowned roller).
     """
     Z = wR.shape[0]
     ev = np.empty(NEV)
@@ -481,6 +483,11 @@ def solve_kinematics_newton(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Q
     dw = np.zeros(Z)
     wtrial = np.zeros(Z)
     tmp = np.zeros(NEV)
+    # start: every roller at its own moment balance for the start cage speed (1-D, bracketed)
+    for j in range(Z):
+        if presolve and active[j]:
+            wR[j], conv = _solve_roller_speed(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
+                                              R_eq, w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter)
     _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
                          prib, hrib, Phirib, par, tq, wq, ev, M, T, totals)
     for it in range(max_iter):
@@ -671,7 +678,7 @@ class FrictionModel:
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw
         converged = True
         # film from the speeds of the previous pass: rolling kinematics, then the traction solution
-        for _ in range(2 if self.traction_kinematics else 1):
+        for film_pass in range(2 if self.traction_kinematics else 1):
             lubrication_state(wR, wc, wi, q, Qrib, X, Cen, Ax, Xrib, a["R_eq"], g.slice_width, self.E_star,
                               a["rib"], par, h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib)
             if self.traction_kinematics:
@@ -679,7 +686,7 @@ class FrictionModel:
                         g.slice_width, prib, hrib, Phirib, par, self.tq, self.wq, tol_M, tol_T, self.max_iterations,
                         totals)
                 start_c, start_R = wc, wR.copy()
-                wc, converged = solve_kinematics_newton(wc, *args)
+                wc, converged = solve_kinematics_newton(wc, film_pass == 0, *args)
                 if not converged:   # bracketing is slower but cannot leave the bracket
                     wR[:] = start_R
                     wc, converged = solve_kinematics(start_c, *args)
