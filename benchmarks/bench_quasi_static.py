@@ -10,7 +10,12 @@ oil 55 degC, it reports:
 - after one warm-up call, the median and minimum of ``--repeats`` timed calls in ms, with
   the iterations, the convergence flag and the target (10 ms combined, 2 ms pure axial);
 - for the pure axial cases, the outer roller-raceway load Q of roller 0 beside the closed
-  form Fa / (Z sin(contact angle)).
+  form Fa / (Z sin(contact angle));
+- where the work goes: roller Newton iterations and roller contact-state evaluations (each
+  one slice-elasticity solve per raceway, the unit cost of the solver) per case;
+- a second table of the solver's hard cases (thesis Fig. 6.10: prototype tilted 0.25 and
+  0.5 deg; Table A.6 geometry 1: pinion with PCR = 200, contact at the roller edge) with
+  their convergence, work and median time.
 
 Run from the repository root::
 
@@ -39,6 +44,13 @@ CASES = {
     "pure axial": (4500.0, 0.0, 2000.0, 0.0, 55.0, 2.0),
 }
 TSRB_NOTE = "TSRB: crown shifts the normal, reference only indicative"
+# hard cases: name: (bearing overrides, Fa [N], Fr [N], speed [rpm], tilt [deg])
+HARD_CASES = {
+    "prototype tilt 0.25": (["bearing=tsrb_prototype"], 4500.0, 2000.0, 2000.0, 0.25),
+    "prototype tilt 0.5": (["bearing=tsrb_prototype"], 4500.0, 2000.0, 2000.0, 0.5),
+    "pinion PCR 200": (["bearing=tsrb_pinion", "bearing.PCR=200", "bearing.aPk=6.05", "bearing.kappa=0.99"],
+                       35000.0, 0.0, 1100.0, 0.0),
+}
 
 
 def parse_args(argv=None):
@@ -111,6 +123,8 @@ def run(args, cache_dir):
     import numba
     import numpy as np
 
+    if str(REPO) not in sys.path:
+        sys.path.insert(0, str(REPO))  # run from a checkout without an installed package
     import sim
     from sim.simulation import BearingModel, Geometry, OperatingPoint, SolverSettings
 
@@ -154,13 +168,15 @@ def run(args, cache_dir):
                 times.append(t)
                 converged &= raw["converged"]
                 iterations.append(raw["iterations"])
+            work = raw["solver_info"]
             all_converged &= converged
             med_ms = 1e3 * statistics.median(times)
             min_ms = 1e3 * min(times)
             its = iterations[-1] if len(set(iterations)) == 1 else f"{min(iterations)}-{max(iterations)}"
             row = dict(bearing=bearing, case=case, median_ms=med_ms, min_ms=min_ms, target_ms=target,
                        status="ok" if med_ms <= target else "MISS", iterations=iterations[-1],
-                       iterations_text=str(its), converged=converged, Q=None, Q_ref=None, note="")
+                       iterations_text=str(its), converged=converged, Q=None, Q_ref=None, note="",
+                       roller_iterations=work["roller_iterations"], evaluations=work["contact_evaluations"])
             if Fr == 0.0:
                 angle = geometry.alpha + geometry.gamma      # nominal outer contact normal
                 row["Q"] = float(raw["Q"][0, 0])         # roller 0, outer race
@@ -176,12 +192,14 @@ def run(args, cache_dir):
     print()
 
     head = (f"{'bearing':<15} {'case':<11} {'median ms':>10} {'min ms':>9} {'target':>7} {'':>4}  "
-            f"{'iter':>4} {'conv':>5}  {'Q_out[0] N':>11} {'reference N':>11} {'dev':>8}  angle")
+            f"{'iter':>4} {'r.it':>5} {'evals':>5} {'conv':>5}  {'Q_out[0] N':>11} {'reference N':>11} {'dev':>8}"
+            "  angle")
     print(head)
     print("-" * len(head))
     for r in rows:
         line = (f"{r['bearing']:<15} {r['case']:<11} {r['median_ms']:10.3f} {r['min_ms']:9.3f} "
-                f"{r['target_ms']:7.1f} {r['status']:>4}  {r['iterations_text']:>4} {str(r['converged']):>5}  ")
+                f"{r['target_ms']:7.1f} {r['status']:>4}  {r['iterations_text']:>4} {r['roller_iterations']:5d} "
+                f"{r['evaluations']:5d} {str(r['converged']):>5}  ")
         if r["Q"] is not None:
             dev = (r["Q"] - r["Q_ref"]) / r["Q_ref"]
             line += f"{r['Q']:11.2f} {r['Q_ref']:11.2f} {100 * dev:+7.2f}%  {r['angle_note']}"
@@ -190,8 +208,28 @@ def run(args, cache_dir):
         print(line)
     print()
     print("reference: Q_out of roller 0 vs Fa / (Z sin(alpha+gamma)), the nominal outer contact angle; dev = Q/ref - 1")
+    print("iter: ring iterations (pure axial: Newton iterations of the load-controlled roller); r.it: roller Newton")
+    print("iterations; evals: roller contact-state evaluations (slice-elasticity solves per raceway), per case")
     for note in sorted({r["note"] for r in rows if r["note"]}):
         print(f"note: {note}")
+    print()
+    print("hard cases (thesis Fig. 6.10 tilt, Table A.6 geometry 1), 20 slices unless --slices")
+    head = f"{'case':<20} {'median ms':>10} {'iter':>5} {'r.it':>5} {'evals':>5} {'cont':>4} {'conv':>5}"
+    print(head)
+    print("-" * len(head))
+    for name, (overrides, Fa, Fr, speed, tilt) in HARD_CASES.items():
+        cfg = sim.load_config(overrides + [f"solver.n_slices={args.slices}"])
+        settings = SolverSettings.from_config(cfg.solver)
+        model = BearingModel(Geometry.from_config(cfg.bearing, cfg.material, settings.n_slices), cfg.material, settings)
+        op = OperatingPoint(Fa, Fr, speed, tilt, 55.0)
+        times = []
+        for _ in range(max(3, args.repeats // 4)):
+            t, raw = timed_solve(model, op)
+            times.append(t)
+        w = raw["solver_info"]
+        all_converged &= raw["converged"]
+        print(f"{name:<20} {1e3 * statistics.median(times):10.3f} {raw['iterations']:5d} {w['roller_iterations']:5d} "
+              f"{w['contact_evaluations']:5d} {w['continuation_steps']:4d} {str(raw['converged']):>5}")
     print(f"all cases converged: {all_converged}")
 
     if args.netcdf:

@@ -24,6 +24,8 @@ def load_config(overrides=None):
     from hydra import compose, initialize_config_dir
     from hydra.core.global_hydra import GlobalHydra
 
+    import sim.schema  # noqa: F401  registers the group schemas that conf/config.yaml composes
+
     if GlobalHydra.instance().is_initialized():
         GlobalHydra.instance().clear()
     with initialize_config_dir(config_dir=str(CONF_DIR), version_base="1.3"):

@@ -26,8 +26,11 @@ n (into the ring) and rolling tangent a = n x e_t:
   pressure with the rib's own roughness and B_ZH, C_ZH; its rolling resistance and spin are
   neglected (sliding dominated, thesis 5.5.1).
 - cage pocket: the cage supplies the tangential force F_cage that balances the roller along
-  e_t; its pocket friction mu_c |F_cage| acts on the spinning roller surface (moment about u',
-  force along v').
+  e_t; its pocket friction mu_c |F_cage| acts on the spinning roller surface: a moment about
+  u' and a force mu_c F_cage sign(omega_R) along v', in the roller's meridian plane. That force
+  is the friction load that enters the quasi-static balance (``roller_loads``); the raceway
+  tractions act along e_t (out of the meridian plane, balanced by the cage) and their spin
+  integrals are even across the width, so they add no meridian-plane force.
 - drag (optional): fluid drag on the rollers, F_D = 1/2 rho X C_D Dwe Lwe (omega_c Dpw/2)^2
   (Harris & Kotzalas 2007, drag on rolling elements), reacted by the housing (outer ring).
 
@@ -695,10 +698,20 @@ class FrictionModel:
                 roller_friction(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
                                 g.slice_width, prib, hrib, Phirib, par, self.tq, self.wq, ev)
                 totals += weight[j] * ev
+        # cage pocket friction on each roller, force along v' (module docstring): the friction
+        # load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
+        roller_loads = np.zeros((Z, 3))
+        for jj in np.flatnonzero(active):
+            roller_friction(jj, wR[jj], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
+                            g.slice_width, prib, hrib, Phirib, par, self.tq, self.wq, ev)
+            F_cage = par[PAR_DRAG_K] * wc * wc - ev[EV_FT]
+            roller_loads[jj, 1] = par[PAR_MU_CAGE] * F_cage * np.sign(wR[jj])
         if symmetric:
             wR[:] = wR[0]
+            roller_loads[:] = roller_loads[0]
         elif mirrored:
             wR[Z // 2 + 1:] = wR[1:(Z + 1) // 2][::-1]
+            roller_loads[Z // 2 + 1:] = roller_loads[1:(Z + 1) // 2][::-1]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
         j = int(np.argmax(load))
         v_roll = np.zeros((2, n))
@@ -723,4 +736,5 @@ class FrictionModel:
             "film_thickness": film,
             "lambda_ratio": lam,
             "cage_speed": wc * 30.0 / np.pi,
+            "roller_loads": roller_loads,
         }

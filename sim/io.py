@@ -51,6 +51,18 @@ CASE_VARIABLES = {
 # written only when some case computed them (friction enabled)
 OPTIONAL_VARIABLES = {"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio"}
 INTEGER_OR_BOOL = {"converged": bool, "edge_stress": bool, "iterations": np.int32}
+# design coordinates: name -> (units, long_name); the first ones are config inputs, the last three derived
+DESIGN_COORDS = {
+    "alpha": ("deg", "roller-axis (mean contact) angle"), "Dpw": ("mm", "pitch diameter"),
+    "Dwe": ("mm", "roller diameter"), "Lwe": ("mm", "roller length"), "Z": ("1", "number of rollers"),
+    "PCR": ("mm", "profile curve radius of the roller"), "kappa": ("1", "osculation (2.7)"),
+    "aP": ("mm", "distance between the contact points"), "aPk": ("mm", "small end face to the first contact point"),
+    "gamma": ("deg", "taper angle (2.1)"), "aA": ("mm", "bearing axis to the centre of PCR (derived)"),
+    "PCR_LB": ("mm", "raceway profile curve radius (derived)"),
+}
+CASE_COORDS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
+# a point without a result (failed, not computed) holds these; every other variable NaN
+FILL_VALUES = {"converged": False, "edge_stress": False, "iterations": 0}
 
 
 def _git_commit():
@@ -82,6 +94,14 @@ def _case_array(name, dims, results, sizes):
         if name in res:
             arr[0, c] = res[name]
     return arr
+
+
+def _case_coords(ops):
+    """Case coordinates (DATA.md) of a list of sim.simulation.OperatingPoint."""
+    attrs = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
+             "tilt": ("deg", "imposed inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
+    return {name: ("case", [getattr(o, name) for o in ops], {"units": units, "long_name": long_name})
+            for name, (units, long_name) in attrs.items()}
 
 
 def build_dataset(geometry, ops, results, config_yaml, settings):
@@ -116,25 +136,15 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
         "roller": ("roller", np.arange(g.Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
         "slice": ("slice", np.arange(g.n_slices), {"long_name": "slice index from the large end", "units": "1"}),
         "x_slice": ("slice", g.x_slice_from_large_end, {"units": "mm", "long_name": "slice centre from the large end"}),
-        "Fa": ("case", [o.Fa for o in ops], {"units": "N", "long_name": "axial load"}),
-        "Fr": ("case", [o.Fr for o in ops], {"units": "N", "long_name": "radial load"}),
-        "speed": ("case", [o.speed for o in ops], {"units": "rpm", "long_name": "inner-ring speed"}),
-        "tilt": ("case", [o.tilt for o in ops], {"units": "deg", "long_name": "imposed inner-ring tilt"}),
-        "oil_temperature": ("case", [o.oil_temperature for o in ops], {"units": "degC", "long_name": "oil temperature"}),
+        **_case_coords(ops),
         "bearing_type": ("design", [g.type], {"long_name": "bearing type"}),
     }
-    design_params = {"alpha": ("deg", np.degrees(g.alpha), "roller-axis (mean contact) angle"),
-                     "gamma": ("deg", np.degrees(g.gamma), "taper angle (2.1)"),
-                     "Dpw": ("mm", g.Dpw, "pitch diameter"), "Dwe": ("mm", g.Dwe, "roller diameter"),
-                     "Lwe": ("mm", g.Lwe, "roller length"), "Z": ("1", g.Z, "number of rollers")}
+    design_params = {"alpha": np.degrees(g.alpha), "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
+                     "Lwe": g.Lwe, "Z": g.Z}
     if g.type == "TSRB":
-        design_params.update({"PCR": ("mm", g.PCR, "profile curve radius of the roller"),
-                              "kappa": ("1", g.kappa, "osculation (2.7)"),
-                              "aP": ("mm", g.aP, "distance between the contact points"),
-                              "aPk": ("mm", g.aPk, "small end face to the first contact point"),
-                              "aA": ("mm", g.aA, "bearing axis to the centre of PCR (derived)"),
-                              "PCR_LB": ("mm", g.PCR_LB, "raceway profile curve radius (derived)")})
-    for name, (units, value, long_name) in design_params.items():
+        design_params.update(PCR=g.PCR, kappa=g.kappa, aP=g.aP, aPk=g.aPk, aA=g.aA, PCR_LB=g.PCR_LB)
+    for name, value in design_params.items():
+        units, long_name = DESIGN_COORDS[name]
         coords[name] = ("design", [value], {"units": units, "long_name": long_name})
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
@@ -168,3 +178,108 @@ def write_netcdf_atomic(ds, path):
             os.remove(tmp)
         raise
     return path
+
+
+# ------------------------------------------------------------------ multi-case and multi-design datasets
+def combine_cases(datasets, config_yaml):
+    """One design's Dataset from Datasets of some of its cases (each with ``design`` 1), in order.
+
+    Variables that only some cases carry (friction outputs of converged cases) are NaN in the
+    others; attributes are those of the first Dataset with ``config`` set to ``config_yaml``.
+    """
+    ds = xr.concat(datasets, dim="case", data_vars="minimal", coords="minimal", compat="override",
+                   join="outer", fill_value=FILL_VALUES, combine_attrs="override")
+    ds.attrs["config"] = config_yaml
+    return ds
+
+
+def failed_dataset(bearing, ops, config_yaml, message):
+    """Dataset of a design that produced no result (impossible geometry, bad input, a crash).
+
+    It keeps the design's place in a sweep: case coordinates of ``ops``, the geometry inputs of
+    the ``bearing`` config node as design coordinates (derived ones NaN), ``converged = False``.
+    """
+    coords = dict(_case_coords(ops))
+    coords["bearing_type"] = ("design", [str(bearing.get("type"))], {"long_name": "bearing type"})
+    for name, (units, long_name) in DESIGN_COORDS.items():
+        value = bearing.get(name)
+        coords[name] = ("design", [np.nan if value is None else value], {"units": units, "long_name": long_name})
+    converged = xr.Variable(("design", "case"), np.zeros((1, len(ops)), dtype=bool),
+                            {"units": "1", "long_name": CASE_VARIABLES["converged"][2]})
+    ds = xr.Dataset({"converged": converged}, coords=coords)
+    ds.attrs.update({"Conventions": "CF-1.10", "title": "failed design", "package_version": _version(),
+                     "git_commit": _git_commit(), "config": config_yaml, "error": message,
+                     "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")})
+    return ds
+
+
+def combine_designs(datasets, extra_coords):
+    """One ``design`` x ``case`` Dataset (DATA.md) from single-design Datasets.
+
+    Parameters
+    ----------
+    datasets : list of xarray.Dataset
+        One per design (``design`` 1), from :func:`build_dataset`, :func:`combine_cases` or
+        :func:`failed_dataset`.
+    extra_coords : dict
+        name -> (list of one value per design, attrs): swept parameters that are not already
+        design coordinates (a config-group choice, a solver setting).
+
+    Returns
+    -------
+    xarray.Dataset
+        Cases are matched by their coordinates (Fa, Fr, speed, tilt, oil_temperature) and form
+        the union in order of first appearance; a design lacking a case holds NaN there with
+        ``converged = False``. A design coordinate that some designs lack (PCR of a TRB) is NaN
+        (or "") there. ``x_slice`` stays on ``slice`` while all computed designs share it, else
+        it becomes (design, slice). Attributes are those of the first Dataset.
+    """
+    keys = [list(zip(*(ds[c].values.tolist() for c in CASE_COORDS))) for ds in datasets]
+    union = list(dict.fromkeys(k for ks in keys for k in ks))
+    index = {k: i for i, k in enumerate(union)}
+    design_coords = {}
+    for ds in datasets:
+        for name, coord in ds.coords.items():
+            if coord.dims == ("design",) and name not in design_coords:
+                design_coords[name] = ("" if coord.dtype.kind in "OUS" else np.nan, coord.attrs)
+    x_slices = {tuple(ds.x_slice.values.tolist()) for ds in datasets if "x_slice" in ds.coords}
+    shared_x = len(x_slices) == 1
+    x_attrs = next((ds.x_slice.attrs for ds in datasets if "x_slice" in ds.coords), {})
+    aligned = []
+    for ds, ks in zip(datasets, keys):
+        ds = ds.drop_vars(CASE_COORDS).assign_coords(case=[index[k] for k in ks])
+        ds = ds.assign_coords({name: ("design", [missing], attrs) for name, (missing, attrs) in design_coords.items()
+                               if name not in ds.coords})
+        if "x_slice" in ds.coords:
+            ds = ds.drop_vars("x_slice") if shared_x else ds.assign_coords(x_slice=ds.x_slice.expand_dims("design"))
+        aligned.append(ds)
+    out = xr.concat(aligned, dim="design", data_vars="minimal", coords="minimal", compat="override",
+                    join="outer", fill_value=FILL_VALUES, combine_attrs="override")
+    out = out.drop_vars("case").assign_coords(
+        {c: ("case", list(v), datasets[0][c].attrs) for c, v in zip(CASE_COORDS, zip(*union))})
+    if shared_x:
+        out = out.assign_coords(x_slice=("slice", list(next(iter(x_slices))), x_attrs))
+    return out.assign_coords({name: ("design", values, attrs) for name, (values, attrs) in extra_coords.items()})
+
+
+def failure_table(rows):
+    """The failed points of a sweep as variables on dimension ``failure``.
+
+    Parameters
+    ----------
+    rows : list of dict
+        Keys ``design``, ``case`` (indices into the sweep dataset), ``job`` (Hydra job number),
+        ``overrides`` (the job's command-line overrides), ``reason`` ("error", "not converged"
+        or "missing") and ``message``.
+    """
+    columns = {"design": ("1", "design index of the failed point", np.int32),
+               "case": ("1", "case index of the failed point", np.int32),
+               "job": ("1", "multirun job number of the failed point", np.int32),
+               "overrides": (None, "command-line overrides of the job", str),
+               "reason": (None, "why the point has no result: error, not converged, missing", str),
+               "message": (None, "error message or solver status", str)}
+    data = {}
+    for name, (units, long_name, dtype) in columns.items():
+        attrs = {"long_name": long_name} | ({"units": units} if units else {})
+        data[f"failed_{name}"] = xr.Variable(("failure",), np.array([r[name] for r in rows], dtype=dtype), attrs)
+    return xr.Dataset(data)

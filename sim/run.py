@@ -1,18 +1,35 @@
-"""Command line: simulate one bearing and write ``result.nc`` in Hydra's run directory.
+"""Command line: simulate one bearing over one load case or a grid; sweeps with ``--multirun``.
 
     python -m sim.run bearing=tsrb_reference load.Fa=4500 load.Fr=2000 load.speed=2000 load.tilt=0
+    python -m sim.run bearing=tsrb_prototype load=test_rig_fig_6_5         # a grid, one process
+    python -m sim.run --multirun bearing.PCR=80,100,120 load=sensitivity_scenarios
+    python -m sim.run --multirun hydra/launcher=parallel "bearing.kappa=range(0.95,0.995,0.01)"
 
-Any ``bearing.<param>=`` override works too (e.g. ``bearing.PCR=120``).
+A single run writes ``result.nc`` in Hydra's run directory and prints a summary; cases come
+from the result cache when already computed (:mod:`sim.sweep`). A multirun job writes its
+result (or ``failed.json``) in its job folder and logs one line; ``sweep.nc`` follows the
+last job. Any ``bearing.<param>=`` override works (e.g. ``bearing.PCR=120``).
 """
 import sys
 from pathlib import Path
 
 import hydra
 from hydra.core.hydra_config import HydraConfig
+from hydra.types import RunMode
 from omegaconf import DictConfig
 
 from sim.io import write_netcdf_atomic
-from sim.simulation import simulate
+from sim.sweep import run_cases, run_job
+
+
+def friction_summary(case):
+    """Torque, its largest shares, power loss, film and cage speed of one case [N mm, W, 1, rpm]."""
+    parts = sorted(((float(v), str(c)) for c, v in zip(case.component.values, case.torque_component.values)),
+                   reverse=True)
+    shares = ", ".join(f"{name} {value / float(case.torque):.0%}" for value, name in parts[:3] if value > 0)
+    return (f"  torque, power loss    {float(case.torque):8.1f} N mm, {float(case.power_loss):.1f} W ({shares})\n"
+            f"  Lambda outer/inner    {float(case.lambda_ratio.sel(race='outer')):8.2f} / "
+            f"{float(case.lambda_ratio.sel(race='inner')):.2f}, cage {float(case.cage_speed):.1f} rpm\n")
 
 
 def summary(ds):
@@ -34,17 +51,22 @@ def summary(ds):
             f"{float(case.contact_length_ratio.sel(race='inner')):.2f} (outer/inner)\n"
             f"  L_eff, C_eff, L10     {float(case.L_eff):8.2f} mm, {float(case.C_eff) / 1e3:.1f} kN, {float(case.L10):.3g} 1e6 rev\n"
             f"  edge stress           {bool(case.edge_stress)}\n"
-            f"  converged             True in {int(case.iterations)} iterations, {float(case.wall_time) * 1e3:.1f} ms")
+            + (friction_summary(case) if "torque" in case else "")
+            + f"  converged             True in {int(case.iterations)} iterations, {float(case.wall_time) * 1e3:.1f} ms")
     return "\n".join(lines)
 
 
 @hydra.main(config_path="../conf", config_name="config", version_base="1.3")
 def main(cfg: DictConfig) -> None:
-    ds = simulate(cfg)
-    out = Path(HydraConfig.get().runtime.output_dir) / cfg.output.file
-    write_netcdf_atomic(ds, out)
+    hc = HydraConfig.get()
+    out_dir = Path(hc.runtime.output_dir)
+    if hc.mode == RunMode.MULTIRUN:
+        run_job(cfg, out_dir, hc.job.num, list(hc.overrides.task))
+        return
+    ds, n = run_cases(cfg)
+    out = write_netcdf_atomic(ds, out_dir / cfg.output.file)
     print(summary(ds))
-    print(f"written: {out}")
+    print(f"written: {out} ({n['cases']} cases, {n['cached']} from the cache)")
     if not bool(ds.converged.all()):
         print("some cases did not converge (written with converged = False)", file=sys.stderr)
         raise SystemExit(1)

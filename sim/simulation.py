@@ -60,6 +60,14 @@ class SolverSettings:
     roller_max_iterations: int
     centrifugal: bool
     gyroscopic: bool
+    # Newton limits of sim.solvers.quasi_static (conf/solver/quasi_static.yaml gives the reasons)
+    roller_tolerance_ratio: float
+    forcing: float
+    roller_step_interference: float
+    roller_step_length: float
+    line_search_halvings: int
+    ring_step_fraction: float
+    continuation_steps: int
 
     @classmethod
     def from_config(cls, solver):
@@ -72,7 +80,27 @@ class SolverSettings:
         tol = _check_range("solver.tolerance", solver["tolerance"], 1e-14, 1e-3, low_open=True)
         mi = int(_check_range("solver.max_iterations", solver["max_iterations"], 1, 10000))
         rmi = int(_check_range("solver.roller_max_iterations", solver["roller_max_iterations"], 1, 10000))
-        return cls(int(n), el, tol, mi, rmi, bool(solver["centrifugal"]), bool(solver["gyroscopic"]))
+        extra = dict(
+            roller_tolerance_ratio=_check_range("solver.roller_tolerance_ratio",
+                                                solver["roller_tolerance_ratio"],
+                                                0.0, 1.0, low_open=True),
+            forcing=_check_range("solver.forcing", solver["forcing"], 0.0, 1.0),
+            roller_step_interference=_check_range("solver.roller_step_interference",
+                                                  solver["roller_step_interference"], 0.0, 10.0, low_open=True),
+            roller_step_length=_check_range("solver.roller_step_length",
+                                            solver["roller_step_length"],
+                                            0.0, 1.0, low_open=True),
+            line_search_halvings=int(_check_range("solver.line_search_halvings",
+                                                  solver["line_search_halvings"],
+                                                  0, 60)),
+            ring_step_fraction=_check_range("solver.ring_step_fraction",
+                                            solver["ring_step_fraction"],
+                                            0.0, 10.0, low_open=True),
+            continuation_steps=int(_check_range("solver.continuation_steps",
+                                                solver["continuation_steps"],
+                                                0, 1000)),
+        )
+        return cls(int(n), el, tol, mi, rmi, bool(solver["centrifugal"]), bool(solver["gyroscopic"]), **extra)
 
 
 class BearingModel:
@@ -107,29 +135,127 @@ class BearingModel:
         approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * 8.0
         return np.array([approach / np.sin(g.alpha), 0.0])
 
-    def solve(self, op: OperatingPoint):
-        """Solve one case; returns a dict of plain arrays (kernel units) and the status."""
+    def solve(self, op: OperatingPoint, roller_loads=None):
+        """Solve one case; returns a dict of plain arrays (kernel units) and the status.
+
+        Parameters
+        ----------
+        op : OperatingPoint
+            The load case.
+        roller_loads : array_like (Z, 3), optional
+            External generalised load on each roller (friction, :mod:`sim.friction`), in the
+            roller's own tilted frame (u' along its axis towards the large end, v' normal to
+            it in its meridian plane, outwards to the outer ring) and added to the roller
+            equilibrium like the body loads:
+            [0] force along u' [N], positive towards the large end;
+            [1] force along v' [N], positive outwards (towards the outer raceway);
+            [2] moment about u' x v' = -e_t through the roller centre [N mm], positive when it
+            turns u' towards v' (increases the roller tilt theta).
+            None means zeros. Loads on rollers the rings do not squeeze are ignored (the cage
+            holds them). Unequal loads on rollers psi and -psi switch off the mirror symmetry
+            (all Z rollers are solved); the ring's balance along y is not part of the model.
+
+        Returns
+        -------
+        dict
+            converged, iterations (ring), residual (axial, radial) [N], wall_time [s], ring
+            (delta_a, delta_r) [mm], poses (Z, 3) (xi [mm], eta [mm], theta [rad]),
+            line_load (Z, 2, N) [N/mm], pressure (Z, 2, N) [MPa], Q (Z, 2) [N], Q_rib (Z,) [N],
+            rib_contact (Z, 4) (rib contact point (r, z) [mm] on the roller end and unit rib
+            normal (r, z) into the rib in the roller's meridian plane; the rib load acts on the
+            roller along -normal; zeros for the TSRB), roller_loads (Z, 3) as applied, and
+            solver_info (roller iterations, contact evaluations, ring backtracks, continuation
+            steps).
+        """
+        from sim.solvers.quasi_static import NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP, \
+            SP_RING_STEP, SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST
+
         g = self.geometry
         a = g.arrays
         s = self.settings
         n = g.n_slices
+        if roller_loads is None:
+            ext = np.zeros((g.Z, 3))
+        else:
+            ext = np.ascontiguousarray(roller_loads, dtype=float)
+            if ext.shape != (g.Z, 3) or not np.all(np.isfinite(ext)):
+                raise InputError(f"roller_loads must be a finite array of shape ({g.Z}, 3), got shape {ext.shape}")
+        spar = np.empty(NSP)
+        spar[SP_TOL] = s.tolerance
+        spar[SP_MAX_ITER] = s.max_iterations
+        spar[SP_ROLLER_MAX_ITER] = s.roller_max_iterations
+        spar[SP_ROLLER_TOL_RATIO] = s.roller_tolerance_ratio
+        spar[SP_FORCING] = s.forcing
+        spar[SP_TRUST] = s.roller_step_interference
+        spar[SP_MAX_STEP] = s.roller_step_length
+        spar[SP_BACKTRACKS] = s.line_search_halvings
+        spar[SP_RING_STEP] = s.ring_step_fraction
+        body = self.body_loads(op)
         poses = np.zeros((g.Z, 3))
         q = np.zeros((g.Z, 2, n))
         active = np.zeros((g.Z, 2, n), dtype=np.bool_)
         Q = np.zeros((g.Z, 2))
         Qrib = np.zeros(g.Z)
-        info = np.zeros(5)
+        rib_contact = np.zeros((g.Z, 4))
+        info = np.zeros(9)
+        totals = np.zeros(3)  # roller iterations, contact evaluations, ring backtracks
+
+        def run(Fa, Fr, tilt_rad, ring, warm):
+            info[0] = -1.0 if warm else 0.0
+            ok = solve_bearing(Fa, Fr, tilt_rad, body, ext, g.alpha, g.Dpw, g.Z, a["x"], a["rho"], a["w"],
+                               a["race_kind"], a["race_par"], a["R_eq"], self.C, self.E_star, self.mode,
+                               self.k_line, a["rib"], g.type == "TRB", spar, ring, poses, q, active, Q, Qrib,
+                               rib_contact, info)
+            totals[:] += info[5:8]
+            return bool(ok)
+
+        ext_case = ext.copy()
+        tilt = np.radians(op.tilt)
         ring = self.initial_ring(op)
         t0 = time.perf_counter()
-        converged = solve_bearing(op.Fa, op.Fr, np.radians(op.tilt), self.body_loads(op), g.alpha, g.Dpw, g.Z,
-                                  a["x"], a["rho"], a["w"], a["race_kind"], a["race_par"], a["R_eq"], self.C,
-                                  self.E_star, self.mode, self.k_line, a["rib"], g.type == "TRB",
-                                  s.tolerance, s.max_iterations, s.roller_max_iterations, ring,
-                                  poses, q, active, Q, Qrib, info)
+        converged = run(op.Fa, op.Fr, tilt, ring, False)
+        iterations = int(info[0])
+        steps = 1
+        if not converged and s.continuation_steps > 1 and (op.Fr > 0.0 or tilt != 0.0 or np.any(ext_case != 0.0)):
+            # continuation (Allgower & Georg 2003, Introduction to Numerical Continuation Methods,
+            # ch. 1): from the axisymmetric case (Fa alone, solved with the ring under load
+            # control) to the case along lam in [0, 1] (Fr, tilt and roller loads times lam), each
+            # solution the start of the next; a failed increment is halved from the last solution,
+            # down to 1 / continuation_steps
+            saved = None
+            lam, dlam = 0.0, 1.0 / 4.0
+            ring = self.initial_ring(OperatingPoint(op.Fa, 0.0, op.speed, 0.0, op.oil_temperature))
+            ext[:] = 0.0
+            ok = run(op.Fa, 0.0, 0.0, ring, False)
+            iterations += int(info[0])
+            steps += 1
+            while ok and lam < 1.0 and steps < 2 * s.continuation_steps:
+                saved = (lam, ring.copy(), poses.copy(), q.copy(), active.copy())
+                trial = min(1.0, lam + dlam)
+                ext[:] = trial * ext_case
+                ok = run(op.Fa, trial * op.Fr, trial * tilt, ring, True)
+                iterations += int(info[0])
+                steps += 1
+                if ok:
+                    lam = trial
+                    dlam *= 2.0
+                    continue
+                lam, ring[:], poses[:], q[:], active[:] = saved
+                dlam *= 0.5
+                ok = dlam * s.continuation_steps >= 1.0
+            converged = ok and lam == 1.0
+            if not converged:
+                ext[:] = ext_case
         wall = time.perf_counter() - t0
-        pressure = np.where(q > 0.0, hertz_line_pressure(np.maximum(q, 0.0), a["R_eq"][None, :, :], self.E_star), 0.0)
-        return dict(converged=bool(converged), iterations=int(info[0]), residual=info[1:3].copy(),
-                    wall_time=wall, ring=ring, poses=poses, line_load=q, pressure=pressure, Q=Q, Q_rib=Qrib)
+        # Hertz pressure of every slice: the kernel's formula evaluated by numpy (py_func), so that
+        # no array signature of it is compiled
+        p0 = getattr(hertz_line_pressure, "py_func", hertz_line_pressure)
+        pressure = np.where(q > 0.0, p0(np.maximum(q, 0.0), a["R_eq"][None, :, :], self.E_star), 0.0)
+        solver_info = dict(roller_iterations=int(totals[0]), contact_evaluations=int(totals[1]),
+                           ring_backtracks=int(totals[2]), continuation_steps=steps, roller_classes=int(info[8]))
+        return dict(converged=bool(converged), iterations=iterations, residual=info[1:3].copy(),
+                    wall_time=wall, ring=ring, poses=poses, line_load=q, pressure=pressure, Q=Q, Q_rib=Qrib,
+                    rib_contact=rib_contact, roller_loads=ext, solver_info=solver_info)
 
 
 def roller_shift_relative_to_inner_ring(g, xi, ring, tilt):
@@ -190,11 +316,6 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     return res
 
 
-def operating_points(load_cfg):
-    """The load cases of a ``load`` config node (one case for now)."""
-    return [OperatingPoint.from_config(load_cfg)]
-
-
 def build_model(cfg):
     """Validated :class:`BearingModel` of a composed config (bearing, material, solver)."""
     settings = SolverSettings.from_config(cfg.solver)
@@ -230,8 +351,16 @@ def solve_case(model, friction, op, output_cfg):
         return res
     t0 = time.perf_counter()
     fr = friction.evaluate(op, raw)
+    if fr["friction_converged"]:
+        # friction loads on the rollers (cage pocket) enter the load distribution; one
+        # fixed-point pass: they are 1e-3 of the contact loads, so a second pass changes the
+        # result below the solver tolerance
+        raw = model.solve(op, roller_loads=fr["roller_loads"])
+        res = case_results(model, op, raw, output_cfg)
+        fr = friction.evaluate(op, raw) if res["converged"] else {"friction_converged": False}
     if not fr.pop("friction_converged"):
         return {key: res[key] for key in ("iterations", "wall_time", "P", "P0")} | {"converged": False}
+    fr.pop("roller_loads")
     res.update(fr)
     res["wall_time"] += time.perf_counter() - t0
     return res
@@ -250,6 +379,7 @@ def simulate(cfg):
     xarray.Dataset
         The result following DATA.md, dims ``design`` (1) and ``case``.
     """
+    from sim.cases import operating_points  # a grid of load cases (sim.cases imports this module)
     from sim.io import build_dataset
 
     model = build_model(cfg)

@@ -1,0 +1,496 @@
+"""Sweeps: cached cases, multirun jobs, the Hydra callback and the collector of ``sweep.nc``.
+
+Result cache (nothing lost, nothing redone)
+    Every load case of every run is keyed by a SHA-256 of its resolved config without the
+    ``load`` node and without where-to-write keys (``output.file``, ``output.cache_dir``), plus
+    the case (Fa, Fr, speed, tilt, oil_temperature) and a fingerprint of the code (the sources
+    of ``sim/``, numpy, numba and xarray versions). A converged case is written atomically to
+    ``<output.cache_dir>/<key[:2]>/<key>.pkl`` (the Dataset as ``to_dict`` arrays, pickled: 2 ms
+    to read against 60 ms for a NetCDF file); a run first looks there and only computes what
+    is missing. Failed and unconverged cases are never cached, so a re-run recomputes them.
+    The cache does not depend on the sweep folder: the same command in a new folder (Hydra's
+    ``${now:...}``), an overlapping sweep or a single run reuses every finished case, and a
+    killed sweep loses at most the cases that were being computed.
+
+Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
+    Before the first job the callback composes every job's config, refuses the whole sweep if
+    any value is outside its schema (:func:`sim.schema.validate`), writes the job list
+    ``sweep.json`` and computes, in the launching process, the first uncached case of each
+    kind of job, which compiles (or loads) every numba kernel once into the on-disk cache,
+    before parallel workers start: no two processes compile the same kernel at once. Each job
+    writes ``<sweep dir>/<job>/result.nc`` atomically, or ``failed.json`` with the error (an
+    impossible geometry fails that point, not the sweep) and logs one line. After the last job
+    :func:`collect` merges the jobs into ``<sweep dir>/sweep.nc``.
+
+Command line: ``python -m sim.sweep collect DIR`` re-collects any sweep folder.
+"""
+import argparse
+import copy
+import datetime
+import hashlib
+import json
+import logging
+import os
+import pickle
+import sys
+import tempfile
+import time
+from functools import lru_cache
+from importlib import import_module
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from hydra.experimental.callback import Callback
+from omegaconf import OmegaConf
+from tqdm import tqdm
+
+from sim import io
+from sim.cases import operating_points
+from sim.schema import ConfigError, validate
+from sim.simulation import simulate
+
+log = logging.getLogger(__name__)
+
+MANIFEST = "sweep.json"       # job list written before the first job
+FAILED = "failed.json"        # a job's error, written instead of its result
+SWEEP_FILE = "sweep.nc"       # the merged dataset
+NOT_IN_KEY = ("file", "cache_dir")  # output keys that say where to write, not what to compute
+BASIC_SWEEPER = "hydra._internal.core_plugins.basic_sweeper.BasicSweeper"
+
+
+# ------------------------------------------------------------------ cache keys and cached cases
+@lru_cache(maxsize=1)
+def code_fingerprint():
+    """SHA-256 over the sources of ``sim/`` and the numpy, numba and xarray versions."""
+    import numba
+
+    h = hashlib.sha256(f"numpy {np.__version__} numba {numba.__version__} xarray {xr.__version__}".encode())
+    root = Path(__file__).resolve().parent
+    for path in sorted(root.rglob("*.py")):
+        h.update(str(path.relative_to(root)).encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
+def _plain(node):
+    """Config as plain data with every number a float (17 and 17.0 give one key)."""
+    if isinstance(node, dict):
+        return {k: _plain(v) for k, v in node.items()}
+    if isinstance(node, list):
+        return [_plain(v) for v in node]
+    if isinstance(node, (int, float)) and not isinstance(node, bool):
+        return float(node)
+    return node
+
+
+def design_config(cfg):
+    """The resolved config without ``load``, ``hydra`` and the where-to-write output keys (a dict)."""
+    data = OmegaConf.to_container(cfg, resolve=True)
+    for group in ("load", "hydra"):
+        data.pop(group, None)
+    for name in NOT_IN_KEY:
+        data.get("output", {}).pop(name, None)
+    return data
+
+
+def _key_base(cfg):
+    """What every case key of one config shares: its design config and the code fingerprint."""
+    return {"config": _plain(design_config(cfg)), "code": code_fingerprint()}
+
+
+def case_key(base, op):
+    """Cache key of one load case ``op`` (sim.simulation.OperatingPoint) of a config (``_key_base``)."""
+    payload = dict(base, case=[op.Fa, op.Fr, op.speed, op.tilt, op.oil_temperature])
+    return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()
+
+
+def cache_file(cfg, op, base=None):
+    """Path of the cached result of case ``op`` of ``cfg`` (None when ``output.cache_dir`` is null)."""
+    if cfg.output.cache_dir is None:
+        return None
+    key = case_key(base or _key_base(cfg), op)
+    return Path(cfg.output.cache_dir) / key[:2] / f"{key}.pkl"
+
+
+def _cached(path):
+    """The cached one-case Dataset at ``path``, or None (absent or unreadable: then removed)."""
+    if path is None or not path.exists():
+        return None
+    try:
+        return xr.Dataset.from_dict(pickle.loads(path.read_bytes()))
+    except Exception as exc:  # a damaged entry is recomputed, never trusted
+        log.warning("cache entry %s unreadable (%s): recomputing", path, exc)
+        path.unlink(missing_ok=True)
+        return None
+
+
+def _write_atomic(path, data):
+    """Write bytes through a unique temporary file in the same folder and an atomic rename."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def compute_case(cfg, op, path):
+    """Dataset of one load case: from the cache file ``path`` or computed (and cached when converged).
+
+    Returns the Dataset and whether it came from the cache. ``cfg`` is a private copy whose
+    ``load`` node this function sets to the case.
+    """
+    ds = _cached(path)
+    if ds is not None:
+        return ds, True
+    cfg.load.update(Fa=op.Fa, Fr=op.Fr, speed=op.speed, tilt=op.tilt, oil_temperature=op.oil_temperature, zip=[])
+    ds = simulate(cfg)
+    if path is not None and bool(ds.converged.all()):
+        _write_atomic(path, pickle.dumps(ds.to_dict(data="array"), protocol=pickle.HIGHEST_PROTOCOL))
+    return ds, False
+
+
+def run_cases(cfg, progress=True):
+    """All load cases of ``cfg.load`` (one or a grid), each from the cache or computed.
+
+    Parameters
+    ----------
+    cfg : omegaconf.DictConfig
+        Composed config.
+    progress : bool
+        Show a tqdm bar over the cases (runs with more than one case, on a terminal).
+
+    Returns
+    -------
+    (xarray.Dataset, dict)
+        The run's Dataset (``design`` 1, ``case`` = the grid) and counts ``cases``, ``cached``,
+        ``computed``, ``not_converged``.
+    """
+    ops = operating_points(cfg.load)
+    base, one = _key_base(cfg), copy.deepcopy(cfg)
+    parts, cached = [], 0
+    for op in tqdm(ops, desc="cases", unit="case", disable=None if progress and len(ops) > 1 else True):
+        ds, hit = compute_case(one, op, cache_file(cfg, op, base))
+        parts.append(ds)
+        cached += hit
+    config_yaml = OmegaConf.to_yaml(cfg, resolve=True)
+    ds = io.combine_cases(parts, config_yaml)
+    ds.attrs["code_fingerprint"] = code_fingerprint()  # the code part of the cache keys (sources of sim/)
+    stats = {"cases": len(ops), "cached": cached, "computed": len(ops) - cached,
+             "not_converged": int((~ds.converged.values.astype(bool)).sum())}
+    return ds, stats
+
+
+# ------------------------------------------------------------------ one multirun job
+def run_job(cfg, out_dir, job, overrides):
+    """Run one multirun job into ``out_dir``: ``result.nc`` or ``failed.json``, one log line.
+
+    Never raises for a failed point (the sweep goes on and the collector records it).
+    """
+    out_dir = Path(out_dir)
+    result, failed = out_dir / cfg.output.file, out_dir / FAILED
+    result.unlink(missing_ok=True)   # a re-used sweep folder must not show an old result
+    failed.unlink(missing_ok=True)
+    head = f"job {job} [{' '.join(overrides)}]"
+    t0 = time.perf_counter()
+    try:
+        validate(cfg)
+        ds, n = run_cases(cfg, progress=False)
+    except Exception as exc:
+        message = f"{type(exc).__name__}: {exc}"
+        (log.warning if isinstance(exc, ValueError) else log.exception)("%s failed: %s", head, message)
+        failed.write_text(json.dumps({"job": job, "overrides": list(overrides), "error": message}))
+        return
+    io.write_netcdf_atomic(ds, result)
+    log.info("%s: %d cases (%d from cache, %d computed, %d not converged) in %.1f s", head, n["cases"],
+             n["cached"], n["computed"], n["not_converged"], time.perf_counter() - t0)
+
+
+# ------------------------------------------------------------------ the multirun around the jobs
+def sweep_jobs(config):
+    """Override lists of the jobs of a multirun, in job order, as Hydra's basic sweeper forms them."""
+    from hydra._internal.core_plugins.basic_sweeper import BasicSweeper
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+
+    params = OmegaConf.select(config, "hydra.sweeper.params") or {}
+    arguments = [f"{k}={v}" for k, v in params.items()] + list(config.hydra.overrides.task)
+    return BasicSweeper.split_arguments(OverridesParser.create().parse_overrides(arguments), None)[0]
+
+
+def _kind(cfg):
+    """Jobs of one kind run the same numba kernels: same bearing type and non-geometry config."""
+    data = design_config(cfg)
+    data.pop("bearing")
+    return json.dumps([cfg.bearing.type, _plain(data)], sort_keys=True)
+
+
+def _is_cached(cfg, op, base):
+    path = cache_file(cfg, op, base)
+    return path is not None and path.exists()
+
+
+def warm_up(configs, attempts=3):
+    """Compute cases of each kind of job here, before any worker starts, until one converges.
+
+    A converged case runs every numba kernel of its kind (the friction kernels only run after
+    the load distribution converged), so they are compiled, or loaded, into numba's on-disk
+    cache once, here; workers started afterwards only load them. Up to ``attempts`` uncached
+    cases per kind are tried; the cases computed go to the result cache as usual.
+    """
+    done, tried = set(), {}
+    for cfg in configs:
+        kind = _kind(cfg)
+        base = _key_base(cfg)
+        for op in operating_points(cfg.load):
+            if kind in done or tried.get(kind, 0) >= attempts:
+                break
+            if _is_cached(cfg, op, base):
+                continue
+            tried[kind] = tried.get(kind, 0) + 1
+            try:
+                ds, _ = compute_case(copy.deepcopy(cfg), op, cache_file(cfg, op, base))
+            except Exception:  # the job records the error; another job of this kind warms up
+                break
+            if bool(ds.converged.all()):
+                done.add(kind)
+
+
+def _refuse(problems, what="Sweep refused before any job ran"):
+    print(f"{what}:\n" + "\n".join(problems), file=sys.stderr)
+    raise SystemExit(2)  # SystemExit passes Hydra's callback guard, which only turns Exceptions into warnings
+
+
+class SweepCallback(Callback):
+    """Hydra callback (``conf/config.yaml``, ``hydra.callbacks.sweep``).
+
+    Parameters
+    ----------
+    after_collect : str, optional
+        Dotted name of a function called with the path of ``sweep.nc`` once it is written
+        (``studies.sensitivity.plot_figures`` draws the figures of thesis 7.2).
+    """
+
+    def __init__(self, after_collect=None):
+        self.after_collect = after_collect
+
+    def on_run_start(self, config, **kwargs):
+        try:
+            validate(config)
+        except ConfigError as exc:
+            _refuse([str(exc)], "Run refused before anything ran")
+
+    def on_multirun_start(self, config, **kwargs):
+        from hydra import compose
+
+        if config.hydra.sweeper._target_ != BASIC_SWEEPER:
+            log.warning("sweep: %s is not the basic sweeper; no job list, no collection", config.hydra.sweeper._target_)
+            return
+        jobs = sweep_jobs(config)
+        configs, problems = [], []
+        for num, overrides in enumerate(jobs):
+            try:
+                cfg = compose(config_name=kwargs.get("config_name"), overrides=list(overrides))
+                validate(cfg)
+                configs.append(cfg)
+            except ConfigError as exc:
+                problems += [f"job {num} [{' '.join(overrides)}]: {line}" for line in str(exc).splitlines()]
+            except Exception as exc:  # composition: an unknown key (the cause names it and its schema)
+                text = " ".join(str(exc).split()) + (f" {exc.__cause__}".split("\n")[0] if exc.__cause__ else "")
+                problems.append(f"job {num} [{' '.join(overrides)}]: {text}")
+        if problems:
+            _refuse(problems)
+        sweep_dir = Path(config.hydra.sweep.dir)
+        sweep_dir.mkdir(parents=True, exist_ok=True)
+        manifest = {"overrides": list(config.hydra.overrides.task),
+                    "config": OmegaConf.to_yaml(OmegaConf.masked_copy(config, [k for k in config if k != "hydra"]),
+                                                resolve=True),
+                    "jobs": [{"job": num, "overrides": list(o), "config": OmegaConf.to_container(cfg, resolve=True)}
+                             for num, (o, cfg) in enumerate(zip(jobs, configs))]}
+        _write_atomic(sweep_dir / MANIFEST, json.dumps(manifest, indent=1).encode())
+        cases = [(cfg, op, base) for cfg, base in ((c, _key_base(c)) for c in configs)
+                 for op in operating_points(cfg.load)]
+        log.info("sweep: %d jobs, %d cases, %d already in the cache; results in %s", len(jobs), len(cases),
+                 sum(_is_cached(*case) for case in cases), sweep_dir)
+        t0 = time.perf_counter()
+        warm_up(configs)
+        log.info("sweep: numba kernels compiled or loaded in this process in %.1f s", time.perf_counter() - t0)
+
+    def on_multirun_end(self, config, **kwargs):
+        sweep_dir = Path(config.hydra.sweep.dir)
+        if not (sweep_dir / MANIFEST).exists():
+            return
+        path = collect(sweep_dir)
+        if self.after_collect:
+            module, _, name = self.after_collect.rpartition(".")
+            getattr(import_module(module), name)(path)
+
+
+# ------------------------------------------------------------------ the collector
+NOT_FINISHED = "the job did not finish (killed, or not run yet)"
+
+
+def _job_outcome(sweep_dir, job, cfg):
+    """(Dataset, None, None), or (None, reason, message) with reason "error" or "missing"."""
+    job_dir = sweep_dir / str(job["job"])
+    saved = job_dir / ".hydra" / "overrides.yaml"
+    if not saved.exists() or list(OmegaConf.load(saved)) != job["overrides"]:
+        return None, "missing", NOT_FINISHED   # never started, or a folder of another sweep
+    if (job_dir / FAILED).exists():
+        return None, "error", json.loads((job_dir / FAILED).read_text())["error"]
+    if not (job_dir / cfg.output.file).exists():
+        return None, "missing", NOT_FINISHED
+    return xr.load_dataset(job_dir / cfg.output.file), None, None
+
+
+def _is_load(key):
+    return key == "load" or key.startswith("load.")
+
+
+def _case_tuples(ds):
+    return list(zip(*(ds[c].values.tolist() for c in io.CASE_COORDS)))
+
+
+def _group_designs(jobs, configs):
+    """Job indices per design, in order: jobs whose config and non-load overrides agree."""
+    designs = {}
+    for i, (job, cfg) in enumerate(zip(jobs, configs)):
+        others = sorted(o for o in job["overrides"] if not _is_load(o.partition("=")[0].lstrip("+~")))
+        designs.setdefault(json.dumps([_plain(design_config(cfg)), others], sort_keys=True), []).append(i)
+    return list(designs.values())
+
+
+def _design_dataset(members, outcomes, configs):
+    """One design's Dataset from its jobs (a failed or missing job as a placeholder), each case once."""
+    parts, seen = [], set()
+    for i in members:
+        ds, _, message = outcomes[i]
+        if ds is None:
+            cfg = configs[i]
+            ds = io.failed_dataset(cfg.bearing, operating_points(cfg.load), OmegaConf.to_yaml(cfg), message)
+        parts.append(ds.isel(case=[c for c, t in enumerate(_case_tuples(ds)) if t not in seen]))
+        seen.update(_case_tuples(ds))
+    return parts[0] if len(parts) == 1 else io.combine_cases(parts, OmegaConf.to_yaml(configs[members[0]]))
+
+
+def _swept_coords(jobs, configs, designs, datasets):
+    """Design coordinates of the non-load overrides that differ between jobs, and all swept names.
+
+    ``bearing.<p>`` is named ``p`` (already a coordinate for the geometry: PCR, kappa, ...); other
+    keys by their path with "_" (``solver_n_slices``), a group choice by the group (``bearing``,
+    ``variant``) with the option name as value.
+    """
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+
+    parser = OverridesParser.create()
+    parsed = [{o.key_or_group: o for o in parser.parse_overrides(job["overrides"])} for job in jobs]
+    extra, names = {}, []
+    for key in dict.fromkeys(k for p in parsed for k in p if not _is_load(k)):
+        shown = [p[key].get_value_element_as_str() if key in p else "" for p in parsed]
+        if len(set(shown)) < 2:
+            continue
+        name = key.rpartition(".")[2] if key.startswith("bearing.") else key.replace(".", "_")
+        names.append(name)
+        if name in datasets[0].coords and key.startswith("bearing."):
+            continue
+        values = []
+        for members in designs:
+            value = OmegaConf.select(configs[members[0]], key) if key in parsed[members[0]] else None
+            values.append(value if isinstance(value, (int, float, str, bool)) else shown[members[0]])
+        array = np.asarray(values)
+        extra[name] = (array.astype(str) if array.dtype.kind == "O" else array, {"long_name": f"swept {key}"})
+    return extra, names
+
+
+def _failure_rows(ds, jobs, configs, designs, outcomes):
+    """One row per point of ``ds`` without a valid result: error, not converged or missing."""
+    design_of = {i: d for d, members in enumerate(designs) for i in members}
+    case_index = {t: c for c, t in enumerate(_case_tuples(ds))}
+    rows = []
+    for i, (job, (job_ds, reason, message)) in enumerate(zip(jobs, outcomes)):
+        d = design_of[i]
+        points = _case_tuples(job_ds) if job_ds is not None else [
+            (o.Fa, o.Fr, o.speed, o.tilt, o.oil_temperature) for o in operating_points(configs[i].load)]
+        for c in (case_index[t] for t in points):
+            if job_ds is not None:
+                if bool(ds.converged.values[d, c]):
+                    continue
+                reason = "not converged"
+                message = f"converged = False after {int(ds.iterations.values[d, c])} ring iterations"
+            rows.append({"design": d, "case": c, "job": job["job"], "overrides": " ".join(job["overrides"]),
+                         "reason": reason, "message": message})
+    return rows
+
+
+def collect(sweep_dir):
+    """Merge the jobs of a multirun folder into ``<sweep_dir>/sweep.nc`` (DATA.md).
+
+    Jobs that differ only in their load form one design; designs and cases fill the flat
+    ``design`` x ``case`` grid, swept parameters are design coordinates (attribute ``swept``
+    names them), and every point without a valid result (error, not converged, missing) is a
+    row of the failure table (``failed_*`` variables on dimension ``failure``) and keeps its
+    slot as NaN with ``converged = False``. Re-collecting the same results gives the same data.
+
+    Parameters
+    ----------
+    sweep_dir : str or pathlib.Path
+        A sweep folder of ``python -m sim.run --multirun`` (it holds ``sweep.json``).
+
+    Returns
+    -------
+    pathlib.Path
+        The path of ``sweep.nc``.
+    """
+    sweep_dir = Path(sweep_dir)
+    manifest = json.loads((sweep_dir / MANIFEST).read_text())
+    jobs = manifest["jobs"]
+    configs = [OmegaConf.create(job["config"]) for job in jobs]
+    outcomes = [_job_outcome(sweep_dir, job, cfg) for job, cfg in zip(jobs, configs)]
+    designs = _group_designs(jobs, configs)
+    datasets = [_design_dataset(members, outcomes, configs) for members in designs]
+    extra, swept = _swept_coords(jobs, configs, designs, datasets)
+    ds = io.combine_designs(datasets, extra)
+    ds["design_config"] = xr.Variable(
+        ("design",), [OmegaConf.to_yaml(OmegaConf.create(design_config(configs[m[0]]))) for m in designs],
+        {"long_name": "resolved config of the design without load (YAML)"})
+    ds = ds.merge(io.failure_table(_failure_rows(ds, jobs, configs, designs, outcomes)))
+    provenance = next((d.attrs for d in datasets if "error" not in d.attrs), datasets[0].attrs)
+    ds.attrs = {k: v for k, v in provenance.items() if k != "error"}
+    ds.attrs.update({"title": f"sweep of {ds.sizes['design']} designs x {ds.sizes['case']} cases",
+                     "config": manifest["config"], "sweep_overrides": " ".join(manifest["overrides"]),
+                     "swept": " ".join(swept), "sweep_dir": str(sweep_dir.resolve()),
+                     "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")})
+    path = io.write_netcdf_atomic(ds, sweep_dir / SWEEP_FILE)
+    _report(ds, path)
+    return path
+
+
+def _report(ds, path, shown=10):
+    """Log the size of the sweep and the first ``shown`` rows of its failure table."""
+    conv = ds.converged.values.astype(bool)
+    reasons = {r: int((ds.failed_reason.values == r).sum()) for r in np.unique(ds.failed_reason.values)}
+    log.info("sweep.nc: %d designs x %d cases, %d converged, failed: %s -> %s", ds.sizes["design"],
+             ds.sizes["case"], int(conv.sum()), reasons or "none", path)
+    for r in range(min(shown, ds.sizes["failure"])):
+        log.info("  design %d case %d (job %d: %s): %s: %s", int(ds.failed_design[r]), int(ds.failed_case[r]),
+                 int(ds.failed_job[r]), str(ds.failed_overrides.values[r]), str(ds.failed_reason.values[r]),
+                 str(ds.failed_message.values[r]))
+    if ds.sizes["failure"] > shown:
+        log.info("  ... %d more in the failed_* variables of sweep.nc", ds.sizes["failure"] - shown)
+
+
+def main(argv=None):
+    """``python -m sim.sweep collect DIR``: (re)build ``DIR/sweep.nc`` from the jobs in DIR."""
+    parser = argparse.ArgumentParser(prog="python -m sim.sweep", description=main.__doc__)
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("collect", help="merge the jobs of a sweep folder into sweep.nc").add_argument("dir", type=Path)
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=logging.INFO, format="%(message)s")
+    print(collect(args.dir))
+
+
+if __name__ == "__main__":
+    main()

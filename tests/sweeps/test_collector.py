@@ -1,0 +1,83 @@
+"""The collector (sim.sweep.collect, sim.io.combine_designs): whatever variables the run files hold
+are merged point by point; a job that never finished is reported; unlike designs still combine."""
+import shutil
+import subprocess
+import sys
+
+import numpy as np
+import xarray as xr
+
+import sim
+from sim import io
+from sim.friction import COMPONENTS
+from sim.sweep import collect, main
+from tests.sweeps.common import FAST, REPO
+
+CHECKER = REPO.parent / "shared" / "tools" / "check_result.py"
+
+
+def copy_of(sweep, tmp_path):
+    return shutil.copytree(sweep.dir, tmp_path / "sweep")
+
+
+def test_collect_command_rebuilds_the_same_dataset(parallel_sweep, tmp_path, capsys):
+    """python -m sim.sweep collect DIR gives the dataset the multirun wrote."""
+    main(["collect", str(copy_of(parallel_sweep, tmp_path))])
+    assert capsys.readouterr().out.strip().endswith("sweep.nc")
+    rebuilt = xr.load_dataset(tmp_path / "sweep" / "sweep.nc")
+    original = xr.load_dataset(parallel_sweep.nc)
+    xr.testing.assert_identical(rebuilt.drop_attrs(), original.drop_attrs())
+
+
+def test_friction_variables_in_run_files_are_merged(parallel_sweep, tmp_path):
+    """Torque and film outputs of "Simulation core II" (DATA.md names and dims), put into the run
+    files, land in sweep.nc at their design and case; the failed design holds NaN."""
+    sweep = copy_of(parallel_sweep, tmp_path)
+    for result in sweep.glob("*/result.nc"):
+        ds = xr.load_dataset(result)
+        tag = ds.PCR.values[:, None] * 10.0 + ds.Fa.values[None, :] / 1e3 + ds.Fr.values[None, :] / 1e6
+        parts = tag[..., None] * np.arange(1, len(COMPONENTS) + 1) / 28.0
+        ds["torque_component"] = (("design", "case", "component"), parts, {"units": "N*mm", "long_name": "breakdown"})
+        ds["torque"] = (("design", "case"), parts.sum(axis=-1), {"units": "N*mm", "long_name": "torque"})
+        ds["power_loss"] = (("design", "case"), tag / 100, {"units": "W", "long_name": "power loss"})
+        ds["srr"] = (("design", "case", "race", "slice"), np.broadcast_to(tag[..., None, None], ds.pressure.shape).copy(),
+                     {"units": "1", "long_name": "slide-to-roll ratio"})
+        ds["lambda_ratio"] = (("design", "case", "race"), np.broadcast_to(tag[..., None], ds.pmax.shape).copy(),
+                              {"units": "1", "long_name": "specific film thickness"})
+        io.write_netcdf_atomic(ds, result)
+    merged = xr.load_dataset(collect(sweep))
+    expected = merged.PCR.values[:, None] * 10.0 + merged.Fa.values[None, :] / 1e3 + merged.Fr.values[None, :] / 1e6
+    np.testing.assert_allclose(merged.torque.isel(design=slice(1, None)), expected[1:], rtol=1e-12)
+    assert merged.torque.dims == ("design", "case") and merged.srr.dims == ("design", "case", "race", "slice")
+    assert merged.torque_component.dims == ("design", "case", "component")
+    np.testing.assert_allclose(merged.srr.isel(design=2, race=0, slice=3), expected[2], rtol=1e-12)
+    assert merged.torque.isel(design=0).isnull().all()  # PCR = 8: no result
+    if CHECKER.exists():
+        chk = subprocess.run([sys.executable, str(CHECKER), str(sweep / "sweep.nc")], capture_output=True, text=True)
+        assert chk.returncode == 0, chk.stdout
+
+
+def test_job_that_never_finished_is_reported_missing(parallel_sweep, tmp_path):
+    """Job 3 (PCR 90, Fa 5 kN) without its result: its 2 points NaN, rows 'missing' in the table."""
+    sweep = copy_of(parallel_sweep, tmp_path)
+    (sweep / "3" / "result.nc").unlink()
+    ds = xr.load_dataset(collect(sweep))
+    missing = ds.failed_reason.values == "missing"
+    assert missing.sum() == 2 and set(ds.failed_job.values[missing]) == {3}
+    assert set(ds.failed_design.values[missing]) == {1} and set(ds.failed_case.values[missing]) == {2, 3}
+    assert ds.pmax.isel(design=1, case=[2, 3]).isnull().all() and ds.pmax.isel(design=1, case=[0, 1]).notnull().all()
+
+
+def test_unlike_designs_combine():
+    """TRB 31313 (Z 13, Lwe 24.2) and the reference TSRB (Z 17, Lwe 17) with different load cases:
+    the case union, NaN where a design lacks a case, roller, PCR and x_slice per design."""
+    trb = sim.simulate(sim.load_config([*FAST, "bearing=trb_31313", "load.Fa=[3000,5000]", "load.Fr=0"]))
+    tsrb = sim.simulate(sim.load_config([*FAST, "load.Fa=[5000,7000]", "load.Fr=0"]))
+    ds = io.combine_designs([trb, tsrb], {"bearing": (np.array(["trb_31313", "tsrb_reference"]), {"long_name": "x"})})
+    np.testing.assert_array_equal(ds.Fa, [3000.0, 5000.0, 7000.0])
+    np.testing.assert_array_equal(ds.converged, [[True, True, False], [False, True, True]])
+    assert ds.pmax.isel(design=0, case=2).isnull().all() and ds.pmax.isel(design=1, case=0).isnull().all()
+    assert ds.sizes["roller"] == 17 and ds.Q.isel(design=0, case=0, roller=slice(13, None)).isnull().all()
+    assert np.isnan(ds.PCR.values[0]) and ds.PCR.values[1] == 100.0
+    assert ds.x_slice.dims == ("design", "slice")
+    np.testing.assert_array_equal(ds.pressure.isel(design=1, case=1), tsrb.pressure.isel(design=0, case=0))

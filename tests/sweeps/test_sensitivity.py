@@ -1,0 +1,47 @@
+"""studies/sensitivity.py: the figures of thesis 7.2 from a sensitivity dataset (issue 4, item 6).
+
+The dataset is made the way the experiment makes it (one run per variant over the six scenarios,
+combined with the ``variant`` coordinate), with a variant that failed; torque figures appear
+exactly when the data has torque.
+"""
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from matplotlib.figure import Figure
+
+import sim
+from sim import io
+from sim.cases import operating_points
+from sim.sweep import run_cases
+from studies.sensitivity import FAMILIES, plot_figures
+from tests.sweeps.common import FAST
+
+VARIANTS = ["trb_32208", "reference", "PCR_up"]
+
+
+def sensitivity_dataset(path, cache):
+    runs = [run_cases(sim.load_config([*FAST, f"+variant={v}", "load=sensitivity_scenarios",
+                                       f"output.cache_dir={cache}"]), progress=False)[0] for v in VARIANTS]
+    cfg = sim.load_config([*FAST, "+variant=PCR_down2", "load=sensitivity_scenarios"])
+    failed = io.failed_dataset(cfg.bearing, operating_points(cfg.load), "", "GeometryError: as an impossible variant")
+    ds = io.combine_designs(runs + [failed], {"variant": (np.array(VARIANTS + ["PCR_down2"]), {"long_name": "variant"})})
+    io.write_netcdf_atomic(ds, path)
+    return ds
+
+
+def test_figures_of_7_2(tmp_path, monkeypatch):
+    ds = sensitivity_dataset(tmp_path / "sweep.nc", tmp_path / "cache")
+    ds["torque"] = ds.P * 0.01  # a stand-in torque variable (N*mm) until friction lands in every run
+    ds.torque.attrs.update(units="N*mm", long_name="frictional torque")
+    io.write_netcdf_atomic(ds, tmp_path / "with_torque" / "sweep.nc")
+    written = plot_figures(tmp_path / "with_torque" / "sweep.nc")
+    pmax_only = {f"pmax_{f}.png" for f in FAMILIES} | {"pmax_speed.png", "pmax_axial.png",
+                                                       "axial_displacement.png", "pressure_PCR.png"}
+    torque = {f"torque_{f}.png" for f in FAMILIES} | {"torque_speed.png", "torque_axial.png"}
+    assert {p.name for p in written} == pmax_only | torque
+    assert all(p.stat().st_size > 10_000 for p in written)  # drawn, not empty canvases
+
+    monkeypatch.setattr(Figure, "savefig", lambda self, path, **kw: Path(path).touch())  # names only
+    assert {p.name for p in plot_figures(tmp_path / "sweep.nc")} == pmax_only  # no torque in the data
+    assert xr.load_dataset(tmp_path / "sweep.nc").variant.values.tolist()[-1] == "PCR_down2"
