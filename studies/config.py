@@ -1,0 +1,181 @@
+"""Study configuration: composing ``conf/study/`` with the simulation config, and checking it.
+
+The study group is not in ``conf/config.yaml``'s defaults list, so ``study=NAME`` on the
+command line is composed as ``+study=NAME`` (``pinion`` when none is given). The study
+chooses the bearings and the load case; any other override (``solver.n_slices=30``,
+``lubricant.*``) is passed on to every simulation.
+"""
+import importlib.util
+import math
+from pathlib import Path
+
+from omegaconf import OmegaConf
+
+import sim
+
+SAMPLERS = ("tpe", "gp", "nsga2")
+DESIGN_PARAMETERS = ("PCR", "kappa", "aP", "aPk", "alpha")
+DESIGN_METHODS = ("sobol", "lhs")
+MATERN_NU = (0.5, 1.5, 2.5, math.inf)
+LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
+DEFAULT_STUDY = "pinion"
+OUTPUT_ROOT = Path("outputs") / "studies"
+
+
+class StudyConfigError(ValueError):
+    """Invalid study configuration; the message names the key, its value and the allowed range."""
+
+
+def _study_in_defaults():
+    defaults = OmegaConf.load(sim.CONF_DIR / "config.yaml").get("defaults", [])
+    return any("study" in str(key) for d in defaults for key in (d.keys() if OmegaConf.is_dict(d) else [d]))
+
+
+def study_overrides(overrides):
+    """The user's overrides with the study group selected (``+study=`` unless config.yaml lists it)."""
+    overrides = list(overrides or [])
+    plus = "" if _study_in_defaults() else "+"
+    chosen = [o for o in overrides if o.lstrip("+").startswith("study=")]
+    rest = [o for o in overrides if o not in chosen]
+    name = chosen[-1].split("=", 1)[1] if chosen else DEFAULT_STUDY
+    return [f"{plus}study={name}", *rest]
+
+
+def simulation_overrides(overrides):
+    """Overrides passed on to the simulations: everything but the study's own keys.
+
+    Raises
+    ------
+    StudyConfigError
+        For overrides of what the study sets itself: the bearings, the load case and the
+        choice of lubricant (``lubricant.*`` values may be overridden).
+    """
+    out = []
+    for o in overrides or []:
+        key = o.lstrip("+~").split("=", 1)[0]
+        group = key.split(".", 1)[0]
+        if group == "study":
+            continue
+        if group in ("bearing", "load") or key == "lubricant":
+            raise StudyConfigError(f"{key} = {o.split('=', 1)[-1]!r} cannot be overridden here: the study sets the "
+                                   f"bearings (study.bearing, study.reference_trb, study.thesis_design), the "
+                                   f"lubricant (study.lubricant) and the load case (study.load.*)")
+        out.append(o)
+    return out
+
+
+def compose(overrides=None):
+    """Root config (simulation groups + ``study``) from command-line style overrides; validated."""
+    simulation_overrides(overrides)
+    cfg = sim.load_config(study_overrides(overrides))
+    validate(cfg.study)
+    return cfg
+
+
+def simulation_config(study, bearing, overrides=None):
+    """Composed simulation config of ``bearing`` (a conf/bearing name) at the study's load case."""
+    cfg = sim.load_config([f"bearing={bearing}", f"lubricant={study.lubricant}", *simulation_overrides(overrides)])
+    for key in LOAD_KEYS:
+        cfg.load[key] = float(study.load[key])
+    return cfg
+
+
+def output_dir(study):
+    """Folder of a study's files: ``outputs/studies/<name>/`` (relative to the working directory)."""
+    return OUTPUT_ROOT / str(study.name)
+
+
+def storage_spec(study, out_dir):
+    """Storage of the Optuna studies: ``study.storage`` or ``sqlite:///<out_dir>/study.db``."""
+    return str(study.storage) if study.storage is not None else f"sqlite:///{Path(out_dir) / 'study.db'}"
+
+
+# ---------------------------------------------------------------------------- validation
+def _require(ok, key, value, allowed):
+    if not ok:
+        raise StudyConfigError(f"study.{key} = {value!r} is outside the allowed range: {allowed}")
+
+
+def _is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _is_int(v, low):
+    return isinstance(v, int) and not isinstance(v, bool) and v >= low
+
+
+def validate(study):
+    """Check every study key at start; raise :class:`StudyConfigError` naming key, value and range."""
+    s = OmegaConf.to_container(study, resolve=True)
+    _require(isinstance(s.get("name"), str) and s["name"].strip() != "" and "/" not in s["name"],
+             "name", s.get("name"), "a non-empty folder name")
+    _require(isinstance(s.get("objective"), str) and s["objective"] != "", "objective", s.get("objective"),
+             "a result variable name (DATA.md), e.g. torque or pmax")
+    _require(s.get("sampler") in SAMPLERS, "sampler", s.get("sampler"), f"one of {list(SAMPLERS)}")
+    if s["sampler"] == "gp":
+        _require(importlib.util.find_spec("torch") is not None, "sampler", s["sampler"],
+                 "gp needs PyTorch (pip install torch==2.13.0, the CPU build on this machine's disk); "
+                 "or use tpe / nsga2")
+    free = s.get("free")
+    _require(isinstance(free, list) and len(free) > 0 and len(set(free)) == len(free)
+             and set(free) <= set(DESIGN_PARAMETERS), "free", free,
+             f"a non-empty list of distinct names from {list(DESIGN_PARAMETERS)}")
+    for name in free:
+        b = s.get("bounds", {}).get(name)
+        _require(isinstance(b, list) and len(b) == 2 and all(map(_is_number, b)) and b[0] < b[1],
+                 f"bounds.{name}", b, "[low, high], finite numbers with low < high")
+    _require(_is_int(s.get("seed"), 0), "seed", s.get("seed"), "an integer >= 0")
+    _require(s.get("storage") is None or (isinstance(s["storage"], str) and
+                                          ("://" in s["storage"] or s["storage"].startswith("journal:"))),
+             "storage", s.get("storage"), "null (SQLite under outputs/), an RDB URL or journal:<path>")
+    _require(_is_int(s.get("n_jobs"), 1), "n_jobs", s.get("n_jobs"), "an integer >= 1")
+    ss = s.get("sampler_settings", {})
+    _require(_is_int(ss.get("n_startup_trials"), 0), "sampler_settings.n_startup_trials",
+             ss.get("n_startup_trials"), "an integer >= 0")
+    _require(_is_int(ss.get("population_size"), 2), "sampler_settings.population_size",
+             ss.get("population_size"), "an integer >= 2")
+    d = s.get("initial_design", {})
+    _require(d.get("method") in DESIGN_METHODS, "initial_design.method", d.get("method"), f"one of {list(DESIGN_METHODS)}")
+    sur = s.get("surrogate", {})
+    _require(_is_int(sur.get("cv_folds"), 2), "surrogate.cv_folds", sur.get("cv_folds"), "an integer >= 2")
+    _require(_is_int(d.get("n"), max(2, sur["cv_folds"])), "initial_design.n", d.get("n"),
+             f"an integer >= {max(2, sur['cv_folds'])} (at least surrogate.cv_folds points)")
+    b = s.get("budget", {})
+    _require(_is_int(b.get("max_simulations"), d["n"]), "budget.max_simulations", b.get("max_simulations"),
+             f"an integer >= initial_design.n = {d['n']}")
+    for key in ("trials_per_round", "verify_per_round", "patience"):
+        _require(_is_int(b.get(key), 1), f"budget.{key}", b.get(key), "an integer >= 1")
+    _require(_is_number(b.get("min_improvement")) and b["min_improvement"] >= 0.0, "budget.min_improvement",
+             b.get("min_improvement"), "a number >= 0")
+    _require(_is_number(b.get("dedup_distance")) and 0.0 <= b["dedup_distance"] < 1.0, "budget.dedup_distance",
+             b.get("dedup_distance"), "a number in [0, 1)")
+    c = s.get("constraints", {})
+    _require(_is_number(c.get("axial_displacement_max")) and c["axial_displacement_max"] > 0.0,
+             "constraints.axial_displacement_max", c.get("axial_displacement_max"), "a number > 0 [mm]")
+    for key, unit in (("pmax_max", "MPa"), ("L10_min", "1e6 rev")):
+        v = c.get(key)
+        _require(v == "trb" or (_is_number(v) and v > 0.0), f"constraints.{key}", v,
+                 f"'trb' (the reference TRB at the same load) or a number > 0 [{unit}]")
+    _require(isinstance(c.get("edge_stress"), bool), "constraints.edge_stress", c.get("edge_stress"), "true or false")
+    _require(_is_number(c.get("PCR_over_Lwe_max")) and c["PCR_over_Lwe_max"] > 0.0,
+             "constraints.PCR_over_Lwe_max", c.get("PCR_over_Lwe_max"), "a number > 0")
+    _require(sur.get("nu") in MATERN_NU, "surrogate.nu", sur.get("nu"), f"one of {list(MATERN_NU)}")
+    for key in ("length_scale_bounds", "constant_value_bounds", "noise_level_bounds"):
+        v = sur.get(key)
+        _require(isinstance(v, list) and len(v) == 2 and all(map(_is_number, v)) and 0.0 < v[0] < v[1],
+                 f"surrogate.{key}", v, "[low, high] with 0 < low < high")
+    _require(_is_int(sur.get("n_restarts_optimizer"), 0), "surrogate.n_restarts_optimizer",
+             sur.get("n_restarts_optimizer"), "an integer >= 0")
+    _require(_is_number(sur.get("interval")) and 0.0 < sur["interval"] < 1.0, "surrogate.interval",
+             sur.get("interval"), "a probability in (0, 1)")
+    _require(isinstance(sur.get("log_outputs"), list), "surrogate.log_outputs", sur.get("log_outputs"),
+             "a list of result names modelled as ln(y)")
+    load = s.get("load", {})
+    for key in LOAD_KEYS:
+        _require(_is_number(load.get(key)), f"load.{key}", load.get(key), "a finite number (checked by the simulation)")
+    for key, group in (("bearing", "bearing"), ("reference_trb", "bearing"), ("thesis_design", "bearing"),
+                       ("lubricant", "lubricant")):
+        v = s.get(key)
+        _require(isinstance(v, str) and (sim.CONF_DIR / group / f"{v}.yaml").is_file(), key, v,
+                 f"a config of conf/{group}/: {sorted(p.stem for p in (sim.CONF_DIR / group).glob('*.yaml'))}")
+    return study

@@ -1,0 +1,174 @@
+"""Full simulations of design points and their NetCDF record (issue 5, item 1).
+
+A point that cannot be simulated is kept, never dropped: its ``status`` says why
+(impossible geometry, not converged, failed) and its results are NaN (DATA.md).
+"""
+import time
+
+import numpy as np
+import xarray as xr
+from joblib import Parallel, delayed
+
+from sim.geometry import GeometryError
+from sim.simulation import InputError, simulate
+
+# CF flags of the ``status`` variable
+STATUS = {"ok": 0, "not_converged": 1, "geometry_error": 2, "failed": 3}
+
+# Results kept per point besides the objective; names and units as in DATA.md.
+RECORDED = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "P", "edge_stress")
+EDGE_MARGIN = "edge_stress_margin"
+EDGE_MARGIN_ATTRS = {"units": "1", "long_name": "edge-stress margin of the most loaded roller, > 0: edge stress "
+                                                "(studies.evaluate.edge_stress_margin)"}
+
+
+def design_config(base_cfg, values):
+    """Copy of a composed simulation config with the bearing's design parameters replaced."""
+    cfg = base_cfg.copy()
+    for key, value in values.items():
+        cfg.bearing[key] = float(value)
+    return cfg
+
+
+def edge_stress_margin(pressure, output_cfg):
+    """Continuous form of the ``edge_stress`` flag of the simulation, for a surrogate to model.
+
+    Parameters
+    ----------
+    pressure : array_like, shape (race, slice)
+        Pressure along the most loaded roller [MPa] (DATA.md ``pressure``).
+    output_cfg : mapping
+        ``output`` config: ``contact_pressure_threshold`` [MPa], ``edge_stress_ratio`` [1].
+
+    Returns
+    -------
+    float
+        max over races of min(p_end - threshold, p_end - ratio p_int) / max(p_int, p_end, threshold)
+        [1], with p_end the higher end-slice and p_int the highest interior-slice pressure. It is
+        > 0 exactly when the simulation flags an edge stress (both conditions of
+        sim.simulation.case_results), and the denominator keeps it within [-ratio, 1].
+    """
+    p = np.asarray(pressure, dtype=float)
+    threshold = float(output_cfg["contact_pressure_threshold"])
+    ends = np.maximum(p[:, 0], p[:, -1])
+    interior = p[:, 1:-1].max(axis=1)
+    excess = np.minimum(ends - threshold, ends - float(output_cfg["edge_stress_ratio"]) * interior)
+    return float(np.max(excess / np.maximum.reduce([interior, ends, np.full_like(ends, threshold)])))
+
+
+def _scalar(da):
+    """A result of one design and case as a float; extra dims (race) reduced by their maximum."""
+    return float(da.isel(design=0, case=0).max())
+
+
+def simulate_point(cfg, quantities):
+    """Run the full simulation of one composed config and summarise it.
+
+    Parameters
+    ----------
+    cfg : omegaconf.DictConfig
+        Composed simulation config (bearing, load case, solver, ...).
+    quantities : sequence of str
+        Result variables to keep (DATA.md names; the objective among them).
+
+    Returns
+    -------
+    ds : xarray.Dataset or None
+        The full result (None when the geometry is impossible or the simulation failed).
+    record : dict
+        ``status`` (key of :data:`STATUS`), ``message``, ``values`` {name: float, NaN unless ok,
+        plus ``edge_stress_margin``}, ``attrs`` {name: {units, long_name}}, ``wall_time`` [s].
+
+    Raises
+    ------
+    sim.simulation.InputError
+        Bad load or solver input: the same for every point, so a configuration error.
+    KeyError
+        A quantity that a converged simulation does not produce.
+    """
+    record = {"status": "ok", "message": "", "values": {q: np.nan for q in (*quantities, EDGE_MARGIN)},
+              "attrs": {}}
+    ds = None
+    t0 = time.perf_counter()
+    try:
+        ds = simulate(cfg)
+    except InputError:
+        raise
+    except GeometryError as err:
+        record.update(status="geometry_error", message=str(err))
+    except Exception as err:  # a numerical failure of the simulation is a result of this point
+        record.update(status="failed", message=f"{type(err).__name__}: {err}")
+    else:
+        if not bool(ds.converged.all()):
+            # an unconverged result may lack variables altogether (sim.io writes what it has)
+            record.update(status="not_converged", message=f"not converged after {int(ds.iterations.max())} iterations")
+        else:
+            missing = [q for q in quantities if q not in ds]
+            if missing:
+                raise KeyError(f"the simulation result has no {missing}; it has {sorted(ds.data_vars)}")
+            record["attrs"] = {q: {k: ds[q].attrs.get(k, "") for k in ("units", "long_name")} for q in quantities}
+            record["values"] = {q: _scalar(ds[q]) for q in quantities}
+            record["values"][EDGE_MARGIN] = edge_stress_margin(ds.pressure.isel(design=0, case=0).values, cfg.output)
+    record["wall_time"] = time.perf_counter() - t0
+    return ds, record
+
+
+def evaluate_design(base_cfg, values, quantities):
+    """Record (see :func:`simulate_point`) of the template config with design parameters ``values``."""
+    return simulate_point(design_config(base_cfg, values), quantities)[1]
+
+
+def evaluate_designs(base_cfg, points, quantities, n_jobs):
+    """:func:`evaluate_design` for a list of design-parameter dicts, in ``n_jobs`` processes (joblib)."""
+    if n_jobs == 1 or len(points) <= 1:
+        return [evaluate_design(base_cfg, p, quantities) for p in points]
+    return Parallel(n_jobs=n_jobs)(delayed(evaluate_design)(base_cfg, p, quantities) for p in points)
+
+
+def points_dataset(space, X, records, source, round_index, attrs):
+    """Dataset of simulated design points along ``design`` (DATA.md names and units).
+
+    Parameters
+    ----------
+    space : studies.space.DesignSpace
+    X : ndarray, shape (n, d)
+        The points [parameter units].
+    records : list of dict
+        From :func:`evaluate_design`.
+    source : str
+        ``initial`` (space-filling design) or ``verification``.
+    round_index : int
+        0 for the initial design, else the verification round.
+    attrs : dict
+        Dataset attributes (provenance, study config).
+    """
+    n = len(records)
+    values = [space.bearing_values(x) for x in X]
+    coords = {k: ("design", [v[k] for v in values], {"units": u, "long_name": ln})
+              for k, u, ln in (("PCR", "mm", "profile curve radius of the roller"), ("kappa", "1", "osculation (2.7)"),
+                               ("aP", "mm", "distance between the contact points"),
+                               ("aPk", "mm", "small end face to the first contact point"),
+                               ("alpha", "deg", "roller-axis (mean contact) angle"),
+                               ("ratings_alpha", "deg", "contact angle of the ISO 281 factors"))}
+    coords["source"] = ("design", [source] * n, {"long_name": "initial (space-filling) or verification run"})
+    coords["round"] = ("design", np.full(n, round_index, dtype=np.int32),
+                       {"units": "1", "long_name": "verification round (0: initial design)"})
+    names = list(records[0]["values"]) if records else []
+    meta = {EDGE_MARGIN: EDGE_MARGIN_ATTRS}
+    for r in records:
+        for q, a in r["attrs"].items():
+            meta.setdefault(q, a)
+    data = {q: ("design", np.array([r["values"][q] for r in records], dtype=float), meta.get(q, {})) for q in names}
+    data["status"] = ("design", np.array([STATUS[r["status"]] for r in records], dtype=np.int8),
+                      {"long_name": "simulation status", "flag_values": np.array(list(STATUS.values()), dtype=np.int8),
+                       "flag_meanings": " ".join(STATUS)})
+    data["message"] = ("design", np.array([r["message"] for r in records], dtype=object),
+                       {"long_name": "why the point has no result"})
+    data["wall_time"] = ("design", np.array([r["wall_time"] for r in records]),
+                         {"units": "s", "long_name": "simulation wall time"})
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def design_matrix(ds, space):
+    """The points of a points dataset as X (n, d) in ``space`` column order."""
+    return np.column_stack([ds[n].values for n in space.names]) if ds.sizes["design"] else np.empty((0, len(space.names)))

@@ -1,0 +1,328 @@
+"""Surrogate-assisted design search with verification by the full simulation (issue 5, items 1-4).
+
+1. Space-filling design (Sobol / Latin hypercube) of full simulations -> ``training.nc``.
+2. Round r: GP surrogates fitted to every simulation so far (``surrogates/round_rrr/``); an
+   Optuna study ``<name>-round-rrr`` minimises the surrogate objective under the surrogate
+   constraints; its best k distinct candidates are re-run with the full simulation and added
+   to ``training.nc``.
+3. Stop when the verified best has not improved for ``budget.patience`` rounds, when the
+   simulation budget is spent, or when no new candidate is left.
+
+Everything lives under the study's folder and in its Optuna storage, so running the same
+command again resumes where it stopped; changed result-defining settings are refused.
+"""
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import optuna
+import xarray as xr
+from omegaconf import OmegaConf
+
+from sim.geometry import Geometry, GeometryError
+from sim.io import write_netcdf_atomic
+from studies.config import StudyConfigError, output_dir, simulation_config, storage_spec
+from studies.constraints import FAILED, Limits, margins, rank_key
+from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, design_matrix, evaluate_design, evaluate_designs,
+                              points_dataset, simulate_point)
+from studies.search import (complete_trials, finished_study, make_sampler, make_storage, open_study, persist_study,
+                            run_trials)
+from studies.space import DesignSpace
+from surrogate import GPSettings, GPSurrogate, load_surrogates, save_surrogates
+
+CONVERGED = "converged"  # surrogate of the convergence label: +1 converged, -1 not (Rasmussen & Williams 6.5)
+# study keys that do not change results: a study may be resumed with other values
+RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name")
+
+
+@dataclass
+class Reference:
+    """A reference bearing simulated at the study's load case."""
+
+    label: str
+    bearing: str
+    cfg: object  # the composed simulation config
+    ds: xr.Dataset
+    record: dict
+
+
+def round_seed(seed, *indices):
+    """Independent integer seed for (round, trial) from the study seed (numpy SeedSequence)."""
+    return int(np.random.SeedSequence([seed, *indices]).generate_state(1)[0])
+
+
+def improved(before, after, min_improvement):
+    """Whether rank key ``after`` improves on ``before`` by more than the relative ``min_improvement``."""
+    if before is None:
+        return after is not None
+    if after[0] != before[0]:
+        return after[0] < before[0]
+    return after[1] < before[1] - min_improvement * abs(before[1])
+
+
+class DesignSearch:
+    """One design search: references, training data, rounds, verified results.
+
+    Parameters
+    ----------
+    root_cfg : omegaconf.DictConfig
+        Composed config with the ``study`` node (:func:`studies.config.compose`).
+    overrides : sequence of str
+        The command-line overrides (passed on to every simulation config).
+    out_dir : path, optional
+        Study folder; default ``outputs/studies/<name>``.
+    log : callable
+        Progress printer (one line per stage).
+    """
+
+    def __init__(self, root_cfg, overrides=(), out_dir=None, log=print):
+        self.study = s = root_cfg.study
+        self.overrides = list(overrides)
+        self.out = Path(out_dir) if out_dir is not None else output_dir(s)
+        self.log = log
+        self.base_cfg = simulation_config(s, s.bearing, self.overrides)
+        self.space = DesignSpace.from_config(s, self.base_cfg.bearing)
+        self.objective = str(s.objective)
+        self.quantities = tuple(dict.fromkeys((self.objective, *RECORDED)))
+        self.settings = GPSettings.from_config(s.surrogate, s.seed)
+        self.storage = make_storage(storage_spec(s, self.out))
+        self.references = {}
+        self.limits = None
+        # plain copies for the geometry check of every surrogate trial (an OmegaConf copy costs 16 ms)
+        self._bearing = OmegaConf.to_container(self.base_cfg.bearing, resolve=True)
+        self._material = OmegaConf.to_container(self.base_cfg.material, resolve=True)
+        self._n_slices = int(self.base_cfg.solver.n_slices)
+
+    # ------------------------------------------------------------------ references and limits
+    def run_references(self):
+        """Simulate the reference TRB and the thesis design; set the constraint limits."""
+        for label, name in (("reference TRB", self.study.reference_trb), ("thesis design", self.study.thesis_design)):
+            cfg = simulation_config(self.study, name, self.overrides)
+            try:
+                ds, record = simulate_point(cfg, self.quantities)
+            except KeyError as err:
+                raise StudyConfigError(f"study.objective = {self.objective!r} (or a constraint quantity) is not a "
+                                       f"result of the simulation: {err.args[0]}") from err
+            self.references[label] = Reference(label, str(name), cfg, ds, record)
+        trb = self.references["reference TRB"].record
+        self.limits = Limits.from_config(self.study, trb["values"], float(self.base_cfg.bearing.Lwe))
+        return self.references
+
+    # ------------------------------------------------------------------ training data
+    def attrs(self):
+        """Dataset attributes: provenance of the simulation and the result-defining study config."""
+        study = {k: v for k, v in OmegaConf.to_container(self.study, resolve=True).items() if k not in RESUMABLE_KEYS}
+        ref = next(iter(self.references.values())).ds
+        prov = {k: ref.attrs[k] for k in ("package_version", "git_commit", "solver", "solver_settings", "sources")
+                if ref is not None and k in ref.attrs}
+        return {"Conventions": "CF-1.10", "title": f"design search {self.study.name}: full simulations",
+                **prov, "study_config": OmegaConf.to_yaml(OmegaConf.create(study)),
+                "simulation_config": OmegaConf.to_yaml(self.base_cfg, resolve=True)}
+
+    @property
+    def training_path(self):
+        return self.out / "training.nc"
+
+    def load_training(self):
+        """The training data on disk (None if none); refuses data of another configuration."""
+        if not self.training_path.exists():
+            return None
+        ds = xr.load_dataset(self.training_path)
+        want = self.attrs()
+        for key in ("study_config", "simulation_config"):
+            if ds.attrs.get(key) != want[key]:
+                raise StudyConfigError(f"{self.training_path} was made with another {key.replace('_', ' ')}; "
+                                       f"use another study.name or delete {self.out} to start afresh")
+        return ds
+
+    def save_training(self, ds):
+        write_netcdf_atomic(ds, self.training_path)
+
+    def simulate(self, X, source, round_index):
+        """Full simulations of the rows of X -> points dataset."""
+        points = [self.space.bearing_values(x) for x in X]
+        records = evaluate_designs(self.base_cfg, points, self.quantities, int(self.study.n_jobs))
+        return points_dataset(self.space, X, records, source, round_index, self.attrs())
+
+    def initial_design(self):
+        """Load the training data, or simulate the space-filling design and save it."""
+        ds = self.load_training()
+        if ds is not None:
+            self.log(f"resuming from {self.training_path}: {ds.sizes['design']} simulations")
+            return ds
+        d = self.study.initial_design
+        t0 = time.perf_counter()
+        X = self.space.sample(int(d.n), str(d.method), int(self.study.seed))
+        ds = self.simulate(X, "initial", 0)
+        self.save_training(ds)
+        counts = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
+        self.log(f"initial design: {len(X)} {d.method} simulations in {time.perf_counter() - t0:.1f} s {counts}")
+        return ds
+
+    # ------------------------------------------------------------------ judging simulated points
+    def point_margins(self, ds):
+        """Constraint margins (n, m) of simulated points, from their results."""
+        out = []
+        for i in range(ds.sizes["design"]):
+            p = ds.isel(design=i)
+            values = {k: float(p[k]) for k in ("pmax", "axial_displacement", "C_eff", EDGE_MARGIN)}
+            bearing = {k: float(p[k]) for k in ("PCR", "ratings_alpha")}
+            out.append(margins(values, bearing, self.limits, 0.0 if int(p.status) == STATUS["ok"] else FAILED))
+        return np.array(out).reshape(len(out), len(self.limits.names))
+
+    def best(self, ds):
+        """Index and rank key of the best simulated point (None, None for no points)."""
+        if ds.sizes["design"] == 0:
+            return None, None
+        keys = [rank_key(v, m) for v, m in zip(ds[self.objective].values, self.point_margins(ds))]
+        i = min(range(len(keys)), key=keys.__getitem__)
+        return i, keys[i]
+
+    # ------------------------------------------------------------------ surrogates
+    def modelled(self):
+        """Outputs with a surrogate: objective, constrained quantities and the convergence label."""
+        names = [self.objective, "pmax", "axial_displacement", "C_eff"]
+        if self.limits.edge_stress:
+            names.append(EDGE_MARGIN)
+        return tuple(dict.fromkeys(names))
+
+    def training_sets(self, ds):
+        """(X, y, log, units) per modelled output: results of converged points; labels of all simulated ones."""
+        X = design_matrix(ds, self.space)
+        ok = ds.status.values == STATUS["ok"]
+        ran = ds.status.values != STATUS["geometry_error"]
+        log_outputs = set(self.study.surrogate.log_outputs)
+        sets = {q: (X[ok], ds[q].values[ok], q in log_outputs, ds[q].attrs.get("units", "1")) for q in self.modelled()}
+        sets[CONVERGED] = (X[ran], np.where(ok[ran], 1.0, -1.0), False, "1")
+        return sets
+
+    def fit(self, ds):
+        """GP surrogates of every modelled output fitted to ``ds``."""
+        n_ok = int((ds.status == STATUS["ok"]).sum())
+        if n_ok < 2:
+            raise StudyConfigError(f"only {n_ok} of {ds.sizes['design']} simulations converged: the surrogates need "
+                                   f"at least 2; check study.bounds")
+        return {q: GPSurrogate(self.space.bounds, log, self.settings, q, units).fit(X, y)
+                for q, (X, y, log, units) in self.training_sets(ds).items()}
+
+    def surrogates(self, folder, ds):
+        """Surrogates saved in ``folder``, or fitted to ``ds`` and saved there."""
+        if folder.is_dir():
+            return load_surrogates(folder)
+        models = self.fit(ds)
+        save_surrogates(models, folder)
+        return models
+
+    # ------------------------------------------------------------------ one round
+    def geometry_error(self, bearing):
+        """Message of an impossible geometry ('' if possible): sim.geometry's check, no numerics."""
+        try:
+            Geometry.from_config({**self._bearing, **bearing}, self._material, self._n_slices)
+        except GeometryError as err:
+            return str(err)
+        return ""
+
+    def surrogate_trial(self, trial, models):
+        """Evaluate an Optuna trial on the surrogates: (objective, margins, user attrs)."""
+        x = self.space.suggest(trial)
+        bearing = self.space.bearing_values(x)
+        geometry = self.geometry_error(bearing)
+        predicted = {q: float(m.predict(x[None, :])[0][0]) for q, m in models.items()}
+        sim_margin = FAILED if geometry else -predicted[CONVERGED]
+        return predicted[self.objective], margins(predicted, bearing, self.limits, sim_margin), \
+            {"predicted": predicted, "geometry_error": geometry}
+
+    def simulation_trial(self, trial):
+        """Evaluate an Optuna trial with the full simulation: (objective, margins, user attrs).
+
+        For direct searches (benchmarks/bench_design_search.py). A point without result is
+        told with a positive ``simulation`` margin, so the sampler learns from it, and the
+        worst objective seen so far (at least the references'), so it is never a gap.
+        """
+        x = self.space.suggest(trial)
+        bearing = self.space.bearing_values(x)
+        record = evaluate_design(self.base_cfg, bearing, self.quantities)
+        ok = record["status"] == "ok"
+        value = record["values"][self.objective]
+        if not ok:
+            seen = [t.value for t in complete_trials(trial.study)] + \
+                [r.record["values"][self.objective] for r in self.references.values()]
+            value = float(np.nanmax(seen))
+        return value, margins(record["values"], bearing, self.limits, 0.0 if ok else FAILED), \
+            {"status": record["status"], "message": record["message"], "values": record["values"],
+             "wall_time": record["wall_time"]}
+
+    def run_round(self, r, models):
+        """Optuna study of round r on the surrogates: its complete trials.
+
+        Taken from the storage when a finished copy is there; else run in memory and then
+        written to the storage as ``<name>-round-rrr`` (studies.search, persist_study).
+        """
+        s = self.study
+        name = f"{s.name}-round-{r:03d}"
+        stored = finished_study(self.storage, name)
+        if stored is not None:
+            return complete_trials(stored)
+        study = open_study(optuna.storages.InMemoryStorage(), name,
+                           make_sampler(str(s.sampler), round_seed(s.seed, r, 0), s.sampler_settings))
+        trials = run_trials(study, int(s.budget.trials_per_round), lambda t: self.surrogate_trial(t, models),
+                            lambda k: make_sampler(str(s.sampler), round_seed(s.seed, r, k), s.sampler_settings))
+        persist_study(study, self.storage)
+        return trials
+
+    def candidates(self, trials, ds, k):
+        """Best k trials (feasible by objective, then by violation) with possible geometry, each at
+        least ``dedup_distance`` (max-norm, unit cube) from every simulated and every chosen point."""
+        seen = list(self.space.unit(design_matrix(ds, self.space)))
+        tol = float(self.study.budget.dedup_distance)
+        chosen = []
+        for t in sorted(trials, key=lambda t: rank_key(t.value, t.user_attrs["constraints"])):
+            if len(chosen) == k:
+                break
+            if t.user_attrs["geometry_error"]:
+                continue
+            x = self.space.from_params(t.params)
+            u = self.space.unit(x)[0]
+            if all(np.max(np.abs(u - v)) >= tol for v in seen):
+                chosen.append(x)
+                seen.append(u)
+        return np.array(chosen).reshape(len(chosen), len(self.space.names))
+
+    # ------------------------------------------------------------------ the loop
+    def run(self):
+        """Run (or resume) the whole search; returns the training dataset and the stop reason."""
+        s = self.study
+        b = s.budget
+        if self.limits is None:
+            self.run_references()
+        ds = self.initial_design()
+        stale, r = 0, 1
+        while True:
+            if ds.sizes["design"] >= int(b.max_simulations):
+                reason = f"simulation budget spent ({ds.sizes['design']} of {b.max_simulations})"
+                break
+            t0 = time.perf_counter()
+            models = self.surrogates(self.out / "surrogates" / f"round_{r:03d}", ds)
+            trials = self.run_round(r, models)
+            t_study = time.perf_counter() - t0
+            if not np.any(ds["round"].values == r):
+                X = self.candidates(trials, ds, min(int(b.verify_per_round), int(b.max_simulations) - ds.sizes["design"]))
+                if len(X) == 0:
+                    reason = f"round {r}: no new candidate (all within budget.dedup_distance of simulated points)"
+                    break
+                ds = xr.concat([ds, self.simulate(X, "verification", r)], dim="design",
+                               combine_attrs="override", data_vars="all")
+                self.save_training(ds)
+            _, before = self.best(ds.isel(design=np.flatnonzero(ds["round"].values < r)))
+            i, after = self.best(ds)
+            stale = 0 if improved(before, after, float(b.min_improvement)) else stale + 1
+            state = "feasible" if after[0] == 0 else "infeasible, violation"
+            self.log(f"round {r}: {len(trials)} surrogate trials and fits {t_study:.1f} s; "
+                     f"{ds.sizes['design']} simulations; best #{i} ({state} {after[1]:.6g})")
+            if stale >= int(b.patience):
+                reason = f"verified best not improved for {stale} rounds"
+                break
+            r += 1
+        self.log(f"stopped: {reason}")
+        return ds, reason

@@ -1,0 +1,200 @@
+"""Report of a design search (issue 5, item 5): verified results only.
+
+Writes into the study folder:
+
+- ``verified.nc``: every full simulation of the search with its constraint margins and
+  feasibility (DATA.md names; ``source`` tells the initial design from verification runs);
+- ``best_design.nc``: the full result of the verified best design (pressure included);
+- ``history.png``, ``parity.png``, ``pressure.png``;
+- ``report.md``: the comparison with the reference TRB and the thesis design, and the
+  cross-validation of the final surrogates (also printed).
+"""
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from sim.io import write_netcdf_atomic  # noqa: E402
+from studies.constraints import margins, violation  # noqa: E402
+from studies.evaluate import STATUS, design_config, design_matrix, simulate_point  # noqa: E402
+from surrogate import cross_validate  # noqa: E402
+
+COLUMNS = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "edge_stress")
+
+
+def verified_dataset(search, ds):
+    """``ds`` with the constraint margins (design, constraint) and the feasibility of every point."""
+    M = search.point_margins(ds)
+    return ds.assign(
+        constraint_margin=(("design", "constraint"), M,
+                           {"units": "1", "long_name": "normalised constraint margin, <= 0 satisfied"}),
+        feasible=("design", np.all(M <= 0.0, axis=1), {"long_name": "all constraints satisfied (full simulation)"}),
+    ).assign_coords(constraint=("constraint", list(search.limits.names), {"long_name": "constraint"}))
+
+
+def comparison_rows(search, best):
+    """(label, record, margins or None) of the verified best, the thesis design and the reference TRB.
+
+    The TSRB constraints are evaluated for the TSRBs; the TRB (which has a rib) sets limits.
+    """
+    rows = [best]
+    for ref in search.references.values():
+        bearing = ref.cfg.bearing
+        m = None
+        if str(bearing.type) == "TSRB":
+            m = margins(ref.record["values"], {"PCR": float(bearing.PCR), "ratings_alpha": float(bearing.ratings_alpha)},
+                        search.limits, 0.0 if ref.record["status"] == "ok" else 1.0)
+        rows.append((f"{ref.label} {ref.bearing}", ref.record, m))
+    return rows
+
+
+def cross_validation(search, ds):
+    """k-fold CV of every modelled output on the final training data: {name: CrossValidation}."""
+    s = search.study.surrogate
+    return {q: cross_validate(X, y, search.space.bounds, log, search.settings, int(s.cv_folds), float(s.interval),
+                              q, units)
+            for q, (X, y, log, units) in search.training_sets(ds).items() if len(y) >= int(s.cv_folds)}
+
+
+# ---------------------------------------------------------------------------- plots
+def plot_history(search, vds, refs, path):
+    """Objective of every full simulation in run order; running best feasible; references."""
+    obj = search.objective
+    y = vds[obj].values
+    feas = vds.feasible.values
+    n = np.arange(1, len(y) + 1)
+    fig, ax = plt.subplots(figsize=(7, 4))
+    ax.plot(n[feas], y[feas], "o", color="C0", label="feasible")
+    ax.plot(n[~feas], y[~feas], "o", mfc="none", color="C7", label="infeasible")
+    best = np.minimum.accumulate(np.where(feas, y, np.inf))
+    ax.step(n[np.isfinite(best)], best[np.isfinite(best)], where="post", color="C3", label="verified best")
+    n0 = int(np.sum(vds.source.values == "initial"))
+    ax.axvline(n0 + 0.5, color="k", lw=0.8, ls=":", label="end of initial design")
+    for i, (label, record, _) in enumerate(refs):
+        if np.isfinite(record["values"][obj]):
+            ax.axhline(record["values"][obj], color=f"C{i + 1}", ls="--", lw=1, label=label)
+    ax.set_xlabel("full simulation")
+    ax.set_ylabel(f"{obj} [{vds[obj].attrs.get('units', '')}]")
+    ax.set_title(f"{search.study.name}: optimisation history")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_parity(cv, units, path):
+    """Out-of-fold prediction against simulation, with the prediction intervals; ``units`` by name."""
+    names = [q for q in cv if q != "converged"]
+    fig, axes = plt.subplots(1, len(names), figsize=(3.4 * len(names), 3.4), squeeze=False)
+    for ax, q in zip(axes[0], names):
+        c = cv[q]
+        ax.errorbar(c.y, c.mean, yerr=[c.mean - c.lower, c.upper - c.mean], fmt="o", ms=3, lw=0.6, alpha=0.7)
+        lim = [min(c.y.min(), c.lower.min()), max(c.y.max(), c.upper.max())]
+        ax.plot(lim, lim, "k-", lw=0.8)
+        ax.set_xlabel(f"simulated {q} [{units.get(q, '1')}]")
+        ax.set_ylabel(f"predicted {q} [{units.get(q, '1')}]")
+        ax.set_title(f"R2 {c.r2:.3f}, cover {c.coverage:.2f}\nRMSE {c.rmse:.3g}", fontsize=8)
+    fig.suptitle(f"surrogate parity, {int(round(100 * next(iter(cv.values())).level))} % intervals (k-fold CV)",
+                 fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+def plot_pressure(datasets, path):
+    """Pressure along the most loaded roller (outer, inner race) of the labelled results."""
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.6), sharey=True)
+    for ax, race in zip(axes, ("outer", "inner")):
+        for label, ds in datasets:
+            if ds is None or not bool(ds.converged.all()):
+                continue
+            p = ds.pressure.isel(design=0, case=0).sel(race=race)
+            ax.plot(ds.x_slice.values, p.values, marker=".", label=label)
+        ax.set_title(f"{race} race")
+        ax.set_xlabel("x from the large end [mm]")
+    axes[0].set_ylabel("pressure [MPa]")
+    axes[0].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+
+
+# ---------------------------------------------------------------------------- text
+def _fmt(v):
+    return "-" if v is None or (isinstance(v, float) and not np.isfinite(v)) else f"{v:.4g}"
+
+
+def comparison_table(search, rows, attrs):
+    cols = tuple(dict.fromkeys((search.objective, *COLUMNS)))
+    head = "| design | " + " | ".join(f"{c} [{attrs.get(c, {}).get('units', '')}]" for c in cols) + \
+        " | feasible | tightest constraint (margin) |"
+    lines = [head, "|" + " --- |" * (len(cols) + 3)]
+    for label, record, m in rows:
+        vals = [_fmt(record["values"].get(c)) for c in cols]
+        if m is None:
+            feas, worst = "(reference)", "-"
+        else:
+            feas = "yes" if violation(m) == 0.0 else "no"
+            j = 1 + int(np.argmax(m[1:]))  # margins[0] is the simulation's own
+            worst = f"{search.limits.names[j]} {m[j]:+.3f}"
+        if record["status"] != "ok":
+            feas, vals = record["status"], ["-"] * len(cols)
+        lines.append(f"| {label} | " + " | ".join(vals) + f" | {feas} | {worst} |")
+    return "\n".join(lines)
+
+
+def cv_table(cv):
+    lines = ["| output | n | R^2 | RMSE | coverage |", "| --- | --- | --- | --- | --- |"]
+    for q, c in cv.items():
+        lines.append(f"| {q} | {len(c.y)} | {c.r2:.4f} | {c.rmse:.4g} | {c.coverage:.3f} |")
+    return "\n".join(lines)
+
+
+def write_report(search, ds, reason):
+    """Write the report files of a finished search; returns the report text (markdown)."""
+    out = search.out
+    vds = verified_dataset(search, ds)
+    write_netcdf_atomic(vds, out / "verified.nc")
+    i, key = search.best(ds)
+    x = design_matrix(ds, search.space)[i]
+    bearing = search.space.bearing_values(x)
+    best_ds, best_record = simulate_point(design_config(search.base_cfg, bearing), search.quantities)
+    if best_ds is not None:
+        write_netcdf_atomic(best_ds, out / "best_design.nc")
+    best_m = margins(best_record["values"], bearing, search.limits, 0.0 if best_record["status"] == "ok" else 1.0)
+    rows = comparison_rows(search, ("verified best", best_record, best_m))
+    attrs = {q: ds[q].attrs for q in ds.data_vars}
+    cv = cross_validation(search, ds)
+    plot_history(search, vds, rows[1:], out / "history.png")
+    plot_parity(cv, {q: a.get("units", "1") for q, a in attrs.items()}, out / "parity.png")
+    plot_pressure([("verified best", best_ds)] + [(f"{r.label} {r.bearing}", r.ds) for r in search.references.values()],
+                  out / "pressure.png")
+    s = search.study
+    n_by = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
+    feasible = "feasible" if key[0] == 0 else f"NO FEASIBLE DESIGN FOUND (least violation {key[1]:.4g})"
+    params = ", ".join(f"{k} = {bearing[k]:.4g}" for k in (*search.space.names, "ratings_alpha"))
+    text = "\n".join([
+        f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}",
+        "",
+        f"Load case Fa = {s.load.Fa:g} N, Fr = {s.load.Fr:g} N, {s.load.speed:g} rpm, tilt {s.load.tilt:g} deg; "
+        f"objective `{search.objective}` (minimised); sampler {s.sampler}.",
+        f"Limits: |axial displacement| <= {search.limits.axial_displacement_max:g} mm, "
+        f"pmax <= {search.limits.pmax_max:.1f} MPa, L10 >= {search.limits.L10_min:.4g} 1e6 rev, "
+        f"edge stress {'forbidden' if search.limits.edge_stress else 'allowed'}, "
+        f"PCR/Lwe <= {search.limits.PCR_over_Lwe_max:g}.",
+        f"Full simulations: {ds.sizes['design']} ({n_by}); stopped: {reason}.",
+        "",
+        f"Verified best ({feasible}), simulation #{i}: {params}",
+        "",
+        comparison_table(search, rows, attrs),
+        "",
+        f"Surrogate cross-validation ({s.surrogate.cv_folds}-fold, {100 * s.surrogate.interval:g} % intervals, "
+        f"final training data):",
+        "",
+        cv_table(cv),
+        "",
+        "Files: verified.nc, best_design.nc, history.png, parity.png, pressure.png, training.nc, surrogates/.",
+    ])
+    (out / "report.md").write_text(text + "\n")
+    return text

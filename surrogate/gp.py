@@ -1,0 +1,217 @@
+"""Gaussian-process regression surrogate of one simulation output (issue 5, item 2).
+
+Model (Rasmussen & Williams 2006, "Gaussian Processes for Machine Learning", ch. 2, 4, 5):
+
+- inputs scaled to the unit cube from the design bounds, u = (x - low) / (high - low);
+- output z = ln(y) for outputs positive by physics (then every prediction is positive), else
+  z = y; z standardised by ``normalize_y``;
+- kernel k(u, u') = s^2 Matern_nu(u, u'; l_1..l_d) + sigma_n^2 delta(u, u'): anisotropic
+  Matern (R&W eq. 4.14) with one length scale per input and a white-noise term, hyper-
+  parameters by maximum marginal likelihood (R&W eq. 5.8) with restarts.
+
+Predictions: in z the posterior is normal N(mu, sd^2) (R&W eq. 2.25, 2.26); for a log output
+y is log-normal, mean exp(mu + sd^2/2), variance (exp(sd^2) - 1) exp(2 mu + sd^2), and the
+central interval the exponential of the normal one.
+"""
+import json
+import os
+import shutil
+import warnings
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import joblib
+import numpy as np
+import sklearn
+from scipy.stats import norm
+from sklearn.gaussian_process import GaussianProcessRegressor
+from sklearn.exceptions import ConvergenceWarning
+from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
+from threadpoolctl import threadpool_limits
+
+
+@dataclass(frozen=True)
+class GPSettings:
+    """Kernel and optimiser settings (config node ``study.surrogate``).
+
+    Attributes
+    ----------
+    nu : float
+        Matern smoothness [1] (0.5, 1.5, 2.5 or inf).
+    length_scale_bounds : tuple of float
+        Bounds of each length scale on the unit-cube inputs [1].
+    constant_value_bounds : tuple of float
+        Bounds of the signal variance s^2 of the standardised output [1].
+    noise_level_bounds : tuple of float
+        Bounds of the white-noise variance sigma_n^2 of the standardised output [1].
+    n_restarts_optimizer : int
+        Extra random starts of the marginal-likelihood optimiser.
+    seed : int
+        Seed of those restarts.
+    """
+
+    nu: float
+    length_scale_bounds: tuple
+    constant_value_bounds: tuple
+    noise_level_bounds: tuple
+    n_restarts_optimizer: int
+    seed: int
+
+    @classmethod
+    def from_config(cls, surrogate_cfg, seed):
+        """Settings from the ``study.surrogate`` node and the study seed."""
+        c = surrogate_cfg
+        return cls(float(c["nu"]), tuple(map(float, c["length_scale_bounds"])),
+                   tuple(map(float, c["constant_value_bounds"])), tuple(map(float, c["noise_level_bounds"])),
+                   int(c["n_restarts_optimizer"]), int(seed))
+
+
+def _geometric_mean(bounds):
+    """Start value of a hyperparameter: the geometric mean of its bounds (unbiased in log space)."""
+    return float(np.sqrt(bounds[0] * bounds[1]))
+
+
+class GPSurrogate:
+    """GP regression of one scalar output over a box of design parameters.
+
+    Parameters
+    ----------
+    bounds : array_like, shape (d, 2)
+        [low, high] of each input in its own unit (mm, deg, 1).
+    log : bool
+        Model ln(y); the output must then be > 0 (positive by physics).
+    settings : GPSettings
+    name, units : str, optional
+        Output name and unit, kept in the saved metadata and used for plots.
+    """
+
+    def __init__(self, bounds, log, settings, name="y", units="1"):
+        self.bounds = np.asarray(bounds, dtype=float)
+        if self.bounds.ndim != 2 or self.bounds.shape[1] != 2 or np.any(self.bounds[:, 1] <= self.bounds[:, 0]):
+            raise ValueError(f"bounds = {self.bounds.tolist()} must be [[low, high], ...] with low < high")
+        self.log = bool(log)
+        self.settings = settings
+        self.name = name
+        self.units = units
+        self.gp = None
+        self.n_train = 0
+
+    # ------------------------------------------------------------------ transforms
+    def scale(self, X):
+        """Inputs to the unit cube, u = (x - low) / (high - low) [1]."""
+        X = np.atleast_2d(np.asarray(X, dtype=float))
+        if X.shape[1] != self.bounds.shape[0]:
+            raise ValueError(f"X has {X.shape[1]} columns, the surrogate {self.bounds.shape[0]} inputs")
+        return (X - self.bounds[:, 0]) / (self.bounds[:, 1] - self.bounds[:, 0])
+
+    def _to_latent(self, y):
+        y = np.asarray(y, dtype=float)
+        if self.log:
+            if np.any(~(y > 0.0)):
+                raise ValueError(f"{self.name}: log transform needs y > 0, got min {np.nanmin(y)!r}")
+            return np.log(y)
+        return y
+
+    def _kernel(self, d):
+        s = self.settings
+        return (ConstantKernel(_geometric_mean(s.constant_value_bounds), s.constant_value_bounds)
+                * Matern(length_scale=np.full(d, _geometric_mean(s.length_scale_bounds)),
+                         length_scale_bounds=s.length_scale_bounds, nu=s.nu)
+                + WhiteKernel(_geometric_mean(s.noise_level_bounds), s.noise_level_bounds))
+
+    # ------------------------------------------------------------------ fit / predict
+    def fit(self, X, y):
+        """Fit to finite training data X (n, d) [input units], y (n,) [output unit]; returns self."""
+        U = self.scale(X)
+        y = np.asarray(y, dtype=float).ravel()
+        if len(y) != len(U) or len(y) < 2:
+            raise ValueError(f"{self.name}: need at least 2 points with one y per row of X (got {len(U)}, {len(y)})")
+        if not (np.all(np.isfinite(U)) and np.all(np.isfinite(y))):
+            raise ValueError(f"{self.name}: training data must be finite")
+        z = self._to_latent(y)
+        s = self.settings
+        self.gp = GaussianProcessRegressor(kernel=self._kernel(U.shape[1]), normalize_y=True,
+                                           n_restarts_optimizer=s.n_restarts_optimizer, random_state=s.seed)
+        # One BLAS thread: the matrices are small (n of order 100), where threading costs more
+        # than it gains (measured 7x slower on 2 busy cores). A length scale at its upper bound
+        # means an input without influence and is a valid optimum, so sklearn's warning is muted.
+        with threadpool_limits(limits=1, user_api="blas"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", ConvergenceWarning)
+            self.gp.fit(U, z)
+        self.n_train = len(y)
+        return self
+
+    def predict_latent(self, X):
+        """Posterior mean and standard deviation of z (ln y for a log output) at X."""
+        if self.gp is None:
+            raise RuntimeError(f"{self.name}: fit the surrogate first")
+        mu, sd = self.gp.predict(self.scale(X), return_std=True)
+        return mu, sd
+
+    def predict(self, X):
+        """Predicted mean and standard deviation of y at X [output unit].
+
+        Log outputs: log-normal moments, mean = exp(mu + sd^2/2) > 0 and
+        std = mean sqrt(exp(sd^2) - 1).
+        """
+        mu, sd = self.predict_latent(X)
+        if not self.log:
+            return mu, sd
+        mean = np.exp(mu + 0.5 * sd**2)
+        return mean, mean * np.sqrt(np.expm1(sd**2))
+
+    def interval(self, X, level):
+        """Central prediction interval of probability ``level`` at X: (lower, upper) [output unit]."""
+        if not 0.0 < level < 1.0:
+            raise ValueError(f"interval level = {level!r} must be in (0, 1)")
+        mu, sd = self.predict_latent(X)
+        half = norm.ppf(0.5 + 0.5 * level) * sd
+        lo, hi = mu - half, mu + half
+        return (np.exp(lo), np.exp(hi)) if self.log else (lo, hi)
+
+    # ------------------------------------------------------------------ persistence
+    def metadata(self):
+        """JSON-able description: output, transform, bounds, fitted kernel, settings, versions."""
+        return {"name": self.name, "units": self.units, "log": self.log, "bounds": self.bounds.tolist(),
+                "n_train": self.n_train, "kernel": str(self.gp.kernel_) if self.gp is not None else None,
+                "log_marginal_likelihood": (float(self.gp.log_marginal_likelihood_value_)
+                                            if self.gp is not None else None),
+                "settings": asdict(self.settings), "sklearn_version": sklearn.__version__}
+
+    def save(self, path):
+        """Write ``<path>.joblib`` (the fitted model) and ``<path>.json`` (metadata); returns the joblib path."""
+        path = Path(path)
+        path.parent.mkdir(parents=True, exist_ok=True)
+        model_path = path.with_suffix(".joblib")
+        joblib.dump(self, model_path)
+        path.with_suffix(".json").write_text(json.dumps(self.metadata(), indent=2))
+        return model_path
+
+    @staticmethod
+    def load(path):
+        """Load a surrogate written by :meth:`save` (``path`` with or without suffix)."""
+        model = joblib.load(Path(path).with_suffix(".joblib"))
+        if not isinstance(model, GPSurrogate):
+            raise TypeError(f"{path} does not hold a GPSurrogate")
+        return model
+
+
+def save_surrogates(models, folder):
+    """Save a dict name -> GPSurrogate as ``<folder>/<name>.joblib/.json``.
+
+    Written into a sibling temporary folder renamed into place, so an interrupted save never
+    leaves a partial set behind.
+    """
+    folder = Path(folder)
+    tmp = folder.with_name(folder.name + ".tmp")
+    shutil.rmtree(tmp, ignore_errors=True)
+    for name, model in models.items():
+        model.save(tmp / name)
+    shutil.rmtree(folder, ignore_errors=True)
+    os.replace(tmp, folder)
+    return folder
+
+
+def load_surrogates(folder):
+    """Load every surrogate saved in ``folder``: dict name -> GPSurrogate."""
+    return {p.stem: GPSurrogate.load(p) for p in sorted(Path(folder).glob("*.joblib"))}

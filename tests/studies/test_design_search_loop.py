@@ -1,0 +1,99 @@
+"""The verification loop end to end (studies/loop.py, studies/report.py) on a tiny budget.
+
+The simulation runs for real (pinion study, 10 slices, friction off, objective pmax, so that
+the test does not depend on the friction model): 8 Sobol points, then rounds of 25 surrogate
+trials verifying 2 candidates each, up to 12 full simulations.
+"""
+import numpy as np
+import optuna
+import pytest
+import xarray as xr
+
+from studies.config import compose
+from studies.constraints import FAILED
+from studies.evaluate import STATUS
+from studies.loop import DesignSearch
+from studies.report import write_report
+from studies.search import make_sampler, open_study, run_trials
+
+TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
+        "study.budget.max_simulations=12", "study.budget.trials_per_round=25", "study.budget.verify_per_round=2",
+        "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0", "study.sampler_settings.n_startup_trials=10"]
+
+
+def search_in(folder, *extra):
+    overrides = [*TINY, *extra]
+    search = DesignSearch(compose(overrides), overrides, out_dir=folder, log=lambda msg: None)
+    search.run_references()
+    return search
+
+
+@pytest.fixture(scope="module")
+def finished(tmp_path_factory):
+    search = search_in(tmp_path_factory.mktemp("search"))
+    ds, reason = search.run()
+    return search, ds, reason
+
+
+def test_loop_verifies_candidates_until_the_budget_is_spent(finished):
+    search, ds, reason = finished
+    assert ds.sizes["design"] == 12 and "budget" in reason
+    assert list(ds.source.values[:8]) == ["initial"] * 8
+    assert list(ds["round"].values[8:]) == [1, 1, 2, 2]
+    # no point dropped: impossible or unconverged ones keep their slot with NaN results
+    bad = ds.status.values != STATUS["ok"]
+    assert np.all(np.isnan(ds.pmax.values[bad])) and np.all(np.isfinite(ds.pmax.values[~bad]))
+    # verification runs are new points (budget.dedup_distance), inside the bounds
+    U = search.space.unit(np.column_stack([ds[n].values for n in search.space.names]))
+    assert np.all((U >= 0.0) & (U <= 1.0))
+    gaps = [np.max(np.abs(U[i] - U[:i]), axis=1).min() for i in range(8, 12)]
+    assert min(gaps) >= search.study.budget.dedup_distance
+
+
+def test_report_writes_verified_results_and_plots(finished):
+    search, ds, reason = finished
+    text = write_report(search, ds, reason)
+    for name in ("verified.nc", "best_design.nc", "history.png", "parity.png", "pressure.png", "report.md"):
+        assert (search.out / name).stat().st_size > 0
+    v = xr.load_dataset(search.out / "verified.nc")
+    assert v.constraint_margin.dims == ("design", "constraint")
+    assert list(v.constraint.values) == list(search.limits.names)
+    np.testing.assert_array_equal(v.feasible.values, np.all(v.constraint_margin.values <= 0.0, axis=1))
+    i, key = search.best(ds)
+    if key[0] == 0:  # the best is feasible: it is the least pmax of the feasible points
+        assert ds.pmax.values[i] == np.min(ds.pmax.values[v.feasible.values])
+    best = xr.load_dataset(search.out / "best_design.nc")
+    assert float(best.PCR.values[0]) == pytest.approx(float(ds.PCR.values[i]))
+    assert "reference TRB trb_31313" in text and "thesis design tsrb_pinion" in text and "| pmax |" in text
+
+
+def test_interrupted_search_resumes_to_the_uninterrupted_result(finished, tmp_path):
+    """Stopped after 10 simulations (as by a budget or a kill between rounds), then run again with the full
+    budget: the same points as one uninterrupted run, bit for bit; a finished search re-run adds nothing."""
+    _, reference, _ = finished
+    first, _ = search_in(tmp_path, "study.budget.max_simulations=10").run()
+    assert first.sizes["design"] == 10
+    resumed, _ = search_in(tmp_path).run()
+    for name in ("PCR", "kappa", "aP", "aPk", "alpha", "pmax", "status"):
+        np.testing.assert_array_equal(resumed[name].values, reference[name].values)
+    again, _ = search_in(tmp_path).run()
+    assert again.sizes["design"] == 12
+
+
+def test_changed_settings_are_refused_on_resume(finished):
+    search, _, _ = finished
+    with pytest.raises(ValueError, match="another study config"):
+        search_in(search.out, "study.bounds.PCR=[40.0,150.0]").run()
+
+
+def test_impossible_geometry_is_a_recorded_infeasible_trial(tmp_path):
+    """Direct search on the full simulation (benchmark path) with aP + aPk >= Lwe everywhere: every trial
+    is COMPLETE with the simulation margin FAILED and a finite objective, none is dropped."""
+    search = search_in(tmp_path, "study.bounds.aP=[14.0,16.0]", "study.bounds.aPk=[11.0,12.0]")
+    sampler = make_sampler("tpe", 0, search.study.sampler_settings)
+    study = open_study(optuna.storages.InMemoryStorage(), "direct", sampler)
+    trials = run_trials(study, 3, search.simulation_trial, lambda k: sampler)
+    assert len(trials) == len(study.get_trials()) == 3
+    for t in trials:
+        assert t.user_attrs["status"] == "geometry_error" and "aPk" in t.user_attrs["message"]
+        assert t.user_attrs["constraints"][0] == FAILED and np.isfinite(t.value)

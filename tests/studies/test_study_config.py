@@ -1,0 +1,69 @@
+"""Study configuration (conf/study/, studies/config.py): composition and refusal at start.
+
+Issue 5: bad values (unknown sampler, bounds reversed, budget < 1) fail at start with a
+message naming the key, the value and the allowed range.
+"""
+import pytest
+from omegaconf import OmegaConf
+
+from studies.config import StudyConfigError, compose, simulation_config, validate
+from studies.optimize import main
+
+
+@pytest.fixture(scope="module")
+def pinion():
+    return compose([]).study
+
+
+def test_default_is_pinion_and_size_32208_inherits_it(pinion):
+    """pinion.yaml is the default; size_32208.yaml overrides only its own keys (thesis 7.4 vs 7.2.5)."""
+    size = compose(["study=size_32208"]).study
+    assert (pinion.name, pinion.bearing, pinion.reference_trb, pinion.load.Fa) == ("pinion", "tsrb_pinion",
+                                                                                   "trb_31313", 35000.0)
+    assert pinion.constraints.axial_displacement_max == 0.047  # thesis Annex A.2.1
+    assert (size.name, size.bearing, size.reference_trb, size.load.Fa) == ("size_32208", "tsrb_reference",
+                                                                           "trb_32208", 4500.0)
+    assert size.surrogate == pinion.surrogate  # inherited
+    assert compose(["study.sampler=nsga2"]).study.sampler == "nsga2"
+
+
+def test_simulation_config_carries_the_study_load_case(pinion):
+    cfg = simulation_config(pinion, "trb_31313", ["solver.n_slices=12"])
+    assert (cfg.bearing.type, cfg.load.Fa, cfg.load.Fr, cfg.load.speed, cfg.solver.n_slices) == \
+        ("TRB", 35000.0, 0.0, 1100.0, 12)
+
+
+@pytest.mark.parametrize("key, value, words", [
+    ("sampler", "simplex", ["study.sampler", "'simplex'", "tpe", "gp", "nsga2"]),
+    ("bounds.PCR", [150.0, 30.0], ["study.bounds.PCR", "[150.0, 30.0]", "low < high"]),
+    ("budget.max_simulations", 0, ["study.budget.max_simulations", "0", ">= initial_design.n"]),
+    ("budget.verify_per_round", 0, ["study.budget.verify_per_round", "0", ">= 1"]),
+    ("free", ["PCR", "gamma"], ["study.free", "gamma", "PCR", "kappa"]),
+    ("initial_design.method", "grid", ["study.initial_design.method", "'grid'", "sobol", "lhs"]),
+    ("constraints.pmax_max", -1, ["study.constraints.pmax_max", "-1", "'trb'"]),
+    ("surrogate.interval", 1.5, ["study.surrogate.interval", "1.5", "(0, 1)"]),
+    ("storage", "outputs/x.db", ["study.storage", "outputs/x.db", "journal:"]),
+    ("bearing", "tsrb_missing", ["study.bearing", "tsrb_missing", "tsrb_pinion"]),
+])
+def test_bad_values_fail_at_start_naming_key_value_and_range(pinion, key, value, words):
+    study = pinion.copy()
+    OmegaConf.update(study, key, value, merge=False)
+    with pytest.raises(StudyConfigError) as err:
+        validate(study)
+    for w in words:
+        assert w in str(err.value)
+
+
+def test_study_owned_groups_are_refused():
+    with pytest.raises(StudyConfigError, match="load.Fa"):
+        compose(["load.Fa=1000"])
+    with pytest.raises(StudyConfigError, match="study.bearing"):
+        compose(["bearing=trb_32208"])
+
+
+def test_command_line_exits_2_with_the_message(capsys):
+    """The overrides of the command line reach the check (``python -m studies.optimize study.sampler=...``)."""
+    assert main(["study.sampler=simplex"]) == 2
+    assert "study.sampler = 'simplex'" in capsys.readouterr().err
+    assert main(["study.bounds.kappa=[0.99,0.9]"]) == 2
+    assert "study.bounds.kappa = [0.99, 0.9]" in capsys.readouterr().err
