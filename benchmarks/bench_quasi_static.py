@@ -43,6 +43,7 @@ CASES = {
     "combined": (4500.0, 2000.0, 2000.0, 0.0, 55.0, 10.0),
     "pure axial": (4500.0, 0.0, 2000.0, 0.0, 55.0, 2.0),
 }
+FRICTION_TARGET_MS = 15.0  # per combined case with friction, 20 slices (issue "Simulation core II")
 TSRB_NOTE = "TSRB: crown shifts the normal, reference only indicative"
 # hard cases: name: (bearing overrides, Fa [N], Fr [N], speed [rpm], tilt [deg])
 HARD_CASES = {
@@ -126,7 +127,8 @@ def run(args, cache_dir):
     if str(REPO) not in sys.path:
         sys.path.insert(0, str(REPO))  # run from a checkout without an installed package
     import sim
-    from sim.simulation import BearingModel, Geometry, OperatingPoint, SolverSettings
+    from sim.simulation import (BearingModel, Geometry, OperatingPoint, SolverSettings, build_friction, build_model,
+                                solve_case)
 
     mode = (f"no-cache (fresh NUMBA_CACHE_DIR {cache_dir}: everything compiles)" if cache_dir
             else f"cache (on-disk numba cache{', NUMBA_CACHE_DIR=' + os.environ['NUMBA_CACHE_DIR'] if 'NUMBA_CACHE_DIR' in os.environ else ''})")
@@ -212,6 +214,29 @@ def run(args, cache_dir):
     print("iterations; evals: roller contact-state evaluations (slice-elasticity solves per raceway), per case")
     for note in sorted({r["note"] for r in rows if r["note"]}):
         print(f"note: {note}")
+    print()
+    print(f"with friction: sim.simulation.solve_case (load distribution, traction kinematics, friction, cage")
+    print(f"pocket friction fed back into the load distribution, friction again), target {FRICTION_TARGET_MS:.0f} ms")
+    head = f"{'bearing':<15} {'case':<11} {'median ms':>10} {'min ms':>9} {'':>4}  {'torque N mm':>11} {'conv':>5}"
+    print(head)
+    print("-" * len(head))
+    for bearing in BEARINGS:
+        cfg = sim.load_config([f"bearing={bearing}", f"solver.n_slices={args.slices}"])
+        model = build_model(cfg)
+        friction = build_friction(cfg, model)
+        for case, (Fa, Fr, speed, tilt, oil, _) in CASES.items():
+            op = OperatingPoint(Fa, Fr, speed, tilt, oil)
+            res = solve_case(model, friction, op, cfg.output)          # warm-up (and compile)
+            times = []
+            for _ in range(args.repeats):
+                t0 = time.perf_counter()
+                res = solve_case(model, friction, op, cfg.output)
+                times.append(time.perf_counter() - t0)
+            all_converged &= res["converged"]
+            med = 1e3 * statistics.median(times)
+            status = "ok" if med <= FRICTION_TARGET_MS else "MISS"
+            print(f"{bearing:<15} {case:<11} {med:10.3f} {1e3 * min(times):9.3f} {status:>4}  "
+                  f"{res.get('torque', float('nan')):11.1f} {str(res['converged']):>5}")
     print()
     print("hard cases (thesis Fig. 6.10 tilt, Table A.6 geometry 1), 20 slices unless --slices")
     head = f"{'case':<20} {'median ms':>10} {'iter':>5} {'r.it':>5} {'evals':>5} {'cont':>4} {'conv':>5}"

@@ -631,11 +631,16 @@ class FrictionModel:
         self.drag_model = model
         self.par = par
 
-    def evaluate(self, op, raw):
+    def evaluate(self, op, raw, start=None):
         """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
 
+        ``start``: the ``kinematics`` entry of a previous evaluation of the same case (cage and
+        roller speeds [rad/s]); the film is then taken at those speeds and one Newton solve
+        follows, instead of starting from rolling kinematics.
+
         Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
-        cage speed rpm) and ``friction_converged``.
+        cage speed rpm), ``friction_converged``, the cage pocket ``roller_loads`` (Z, 3) [N]
+        and ``kinematics`` (omega_c, omega_R (Z,)) [rad/s].
         """
         from sim.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 
@@ -658,6 +663,8 @@ class FrictionModel:
         wi = float(angular_speed(op.speed))
         wc = float(angular_speed(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
+        if start is not None:
+            wc, wR = start[0], start[1].copy()
         load = raw["Q"].sum(axis=1)
         # symmetry: pure axial untilted, every roller alike; untilted, roller j mirrors roller Z - j
         symmetric = op.Fr == 0.0 and op.tilt == 0.0
@@ -681,7 +688,8 @@ class FrictionModel:
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw
         converged = True
         # film from the speeds of the previous pass: rolling kinematics, then the traction solution
-        for film_pass in range(2 if self.traction_kinematics else 1):
+        passes = 2 if self.traction_kinematics and start is None else 1
+        for film_pass in range(passes):
             lubrication_state(wR, wc, wi, q, Qrib, X, Cen, Ax, Xrib, a["R_eq"], g.slice_width, self.E_star,
                               a["rib"], par, h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib)
             if self.traction_kinematics:
@@ -689,7 +697,7 @@ class FrictionModel:
                         g.slice_width, prib, hrib, Phirib, par, self.tq, self.wq, tol_M, tol_T, self.max_iterations,
                         totals)
                 start_c, start_R = wc, wR.copy()
-                wc, converged = solve_kinematics_newton(wc, film_pass == 0, *args)
+                wc, converged = solve_kinematics_newton(wc, film_pass == 0 and start is None, *args)
                 if not converged:   # bracketing is slower but cannot leave the bracket
                     wR[:] = start_R
                     wc, converged = solve_kinematics(start_c, *args)
@@ -737,4 +745,5 @@ class FrictionModel:
             "lambda_ratio": lam,
             "cage_speed": wc * 30.0 / np.pi,
             "roller_loads": roller_loads,
+            "kinematics": (wc, wR.copy()),
         }
