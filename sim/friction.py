@@ -286,6 +286,31 @@ def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, F
 
 
 @kernel
+def _widen(lo, hi, flo, fhi):
+    """One step of bracketing the root of a falling function: move the interval (lo, hi) by
+    twice its span towards the root. Returns (lo, hi, flo, fhi, x, x_is_hi): x is the new
+    end, whose function value the caller computes and stores in flo or fhi."""
+    span = hi - lo
+    if flo > 0.0:          # both ends positive: the root lies above
+        return hi, hi + 2.0 * span, fhi, fhi, hi + 2.0 * span, True
+    return lo - 2.0 * span, lo, flo, flo, lo - 2.0 * span, False
+
+
+@kernel
+def _illinois(lo, hi, flo, fhi, x, fx, side):
+    """Illinois update of a bracket (lo, hi) with the new point (x, fx) (Dowell & Jarratt 1971):
+    regula falsi that halves the kept end's value when the same end is kept twice.
+    Returns (lo, hi, flo, fhi, side)."""
+    if fx * fhi > 0.0:
+        if side == -1:
+            flo *= 0.5
+        return lo, x, flo, fx, -1
+    if side == 1:
+        fhi *= 0.5
+    return x, hi, fx, fhi, 1
+
+
+@kernel
 def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
                         Phirib, par, tq, wq, ev, tol_M, max_iter):
     """omega_R of roller j with zero moment about its axis (bracketing + Illinois regula falsi).
@@ -300,27 +325,20 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
     roller_friction(j, hi, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
                     Phirib, par, tq, wq, ev)
     fhi = ev[EV_MU]
-    grow = 0
-    while flo * fhi > 0.0 and grow < max_iter:
-        span = hi - lo
-        if flo > 0.0:          # both positive: root above
-            lo = hi
-            flo = fhi
-            hi = hi + 2.0 * span
-            roller_friction(j, hi, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib,
-                            hrib, Phirib, par, tq, wq, ev)
+    for grow in range(max_iter):
+        if flo * fhi <= 0.0:
+            break
+        lo, hi, flo, fhi, x, x_is_hi = _widen(lo, hi, flo, fhi)
+        roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
+                        Phirib, par, tq, wq, ev)
+        if x_is_hi:
             fhi = ev[EV_MU]
         else:
-            hi = lo
-            fhi = flo
-            lo = lo - 2.0 * span
-            roller_friction(j, lo, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib,
-                            hrib, Phirib, par, tq, wq, ev)
             flo = ev[EV_MU]
-        grow += 1
     if flo * fhi > 0.0:
         return w0, False
     side = 0
+    x = lo
     for it in range(max_iter):
         x = hi - fhi * (hi - lo) / (fhi - flo)
         roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
@@ -328,18 +346,7 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
         fx = ev[EV_MU]
         if abs(fx) <= tol_M:
             return x, True
-        if fx * fhi > 0.0:
-            hi = x
-            fhi = fx
-            if side == -1:
-                flo *= 0.5
-            side = -1
-        else:
-            lo = x
-            flo = fx
-            if side == 1:
-                fhi *= 0.5
-            side = 1
+        lo, hi, flo, fhi, side = _illinois(lo, hi, flo, fhi, x, fx, side)
     return x, False
 
 
@@ -395,26 +402,20 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
     ev = np.empty(NEV)
     lo = 0.95 * wc0
     hi = 1.05 * wc0
-    flo, ok1 = _cage_moment(lo, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
+    flo, ok = _cage_moment(lo, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
                             w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
-    fhi, ok2 = _cage_moment(hi, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
+    fhi, ok = _cage_moment(hi, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
                             w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
-    grow = 0
-    while flo * fhi > 0.0 and grow < max_iter:
-        span = hi - lo
-        if flo > 0.0:
-            lo = hi
-            flo = fhi
-            hi = hi + 2.0 * span
-            fhi, ok2 = _cage_moment(hi, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                    R_eq, w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
+    for grow in range(max_iter):
+        if flo * fhi <= 0.0:
+            break
+        lo, hi, flo, fhi, x, x_is_hi = _widen(lo, hi, flo, fhi)
+        fx, ok = _cage_moment(x, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
+                              w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
+        if x_is_hi:
+            fhi = fx
         else:
-            hi = lo
-            fhi = flo
-            lo = lo - 2.0 * span
-            flo, ok1 = _cage_moment(lo, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                    R_eq, w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
-        grow += 1
+            flo = fx
     if flo * fhi > 0.0:
         return wc0, False
     side = 0
@@ -425,18 +426,7 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
                               w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
         if abs(fx) <= tol_T:
             return x, ok
-        if fx * fhi > 0.0:
-            hi = x
-            fhi = fx
-            if side == -1:
-                flo *= 0.5
-            side = -1
-        else:
-            lo = x
-            flo = fx
-            if side == 1:
-                fhi *= 0.5
-            side = 1
+        lo, hi, flo, fhi, side = _illinois(lo, hi, flo, fhi, x, fx, side)
     return x, False
 
 
