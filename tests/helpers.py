@@ -8,26 +8,59 @@ def case(Fa, Fr=0.0, speed=2000.0, tilt=0.0, oil_temperature=55.0):
     return OperatingPoint(float(Fa), float(Fr), float(speed), float(tilt), float(oil_temperature))
 
 
-def contact_forces_on_inner_ring(model, raw):
-    """Resultant of all slice loads on the inner raceway, recomputed from the solved state [N].
+def race_forces(model, raw, race=1, tilt_deg=0.0):
+    """Resultant (x, z) [N] of the slice loads of one race (0 outer, 1 inner) on its ring, all
+    rollers, recomputed from the solved state.
 
     Independent of the solver's residual bookkeeping: normals from the contact kernel at the
-    final poses, loads from the returned line loads, summed as 3-D vectors over azimuths.
+    returned poses (imposed tilt of the inner ring included), loads from the returned line
+    loads; the force of roller j on the ring is +q w n (n into the ring), summed as 3-D vectors
+    over the azimuths (x = radial component times cos(psi)).
     """
     from sim.contact import slice_contact_meridian
 
     g = model.geometry
     a = g.arrays
     n = g.n_slices
-    d = np.empty(n)
-    nrm = np.empty((n, 2))
-    pts = np.empty((n, 2))
+    d, nrm, pts = np.empty(n), np.empty((n, 2)), np.empty((n, 2))
     Fx = Fz = 0.0
     for j in range(g.Z):
         psi = 2 * np.pi * j / g.Z
-        slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw, a["race_kind"][1],
-                               a["race_par"][1], raw["ring"][1] * np.cos(psi), raw["ring"][0], 0.0, d, nrm, pts)
-        load = raw["line_load"][j, 1] * a["w"]
+        if race == 0:
+            slice_contact_meridian(a["x"], a["rho"], 1, raw["poses"][j], g.alpha, g.Dpw, a["race_kind"][0],
+                                   a["race_par"][0], 0.0, 0.0, 0.0, d, nrm, pts)
+        else:
+            slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw, a["race_kind"][1],
+                                   a["race_par"][1], raw["ring"][1] * np.cos(psi), raw["ring"][0],
+                                   np.radians(tilt_deg) * np.cos(psi), d, nrm, pts)
+        load = raw["line_load"][j, race] * a["w"]
         Fx += np.sum(load * nrm[:, 0]) * np.cos(psi)
         Fz += np.sum(load * nrm[:, 1])
     return Fx, Fz
+
+
+def roller_residuals(model, raw, op, ext=None):
+    """Relative residual of every loaded roller: contact forces (recomputed from the returned
+    poses and ring) + centrifugal force + gyroscopic moment + external load ``ext`` (Z, 3),
+    over its loads [1]."""
+    from sim.contact import roller_axes
+    from sim.solvers.quasi_static import roller_state
+
+    g = model.geometry
+    a = g.arrays
+    body = model.body_loads(op)
+    ext = np.zeros((g.Z, 3)) if ext is None else ext
+    out = []
+    for j in range(g.Z):
+        psi = 2 * np.pi * j / g.Z
+        q = raw["line_load"][j].copy()
+        f, K, Q = np.zeros(5), np.zeros((5, 5)), np.zeros(4)
+        roller_state(raw["poses"][j].copy(), raw["ring"], np.radians(op.tilt) * np.cos(psi), np.cos(psi), g.alpha,
+                     g.Dpw, a["x"], a["rho"], a["w"], a["race_kind"], a["race_par"], a["R_eq"], model.C, model.E_star,
+                     model.mode, model.k_line, a["rib"], g.type == "TRB", q, q > 0, 1e-13, f, K, Q)
+        if Q[0] + Q[1] == 0.0:
+            continue  # unloaded roller, held by the cage
+        ur, uz, vr, vz = roller_axes(g.alpha, raw["poses"][j, 2])
+        r = f[:3] + np.array([body[0] * ur, body[0] * vr, body[1]]) + ext[j]
+        out.append(max(abs(r[0]), abs(r[1]), abs(r[2]) / g.Lwe) / (Q[0] + Q[1] + Q[2]))
+    return np.array(out)

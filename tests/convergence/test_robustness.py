@@ -10,63 +10,14 @@ contact, body and external loads.
 import numpy as np
 import pytest
 
-from sim.contact import roller_axes, slice_contact_meridian
+from sim.contact import roller_axes
 from sim.simulation import BearingModel, case_results
 from sim.solvers.quasi_static import (NAUX, NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP,
                                       SP_RING_STEP, SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST,
-                                      _roller_state, roller_state, solve_roller)
-from tests.helpers import case, contact_forces_on_inner_ring
+                                      _roller_state, solve_roller)
+from tests.helpers import case, race_forces, roller_residuals
 
 PINION_PCR200 = ["bearing=tsrb_pinion", "bearing.PCR=200", "bearing.aPk=6.05", "bearing.kappa=0.99"]
-
-
-def _race_forces(model, raw, tilt_deg, race):
-    """Resultant (x, z) [N] of the slice loads of one race on its ring, all rollers, from the
-    returned line loads and the kernel normals at the returned poses (imposed tilt included).
-
-    The force of roller j on the ring is +q w n (n into the ring); summed as 3-D vectors over
-    the azimuths (x = radial component times cos(psi)).
-    """
-    g = model.geometry
-    a = g.arrays
-    n = g.n_slices
-    d, nrm, pts = np.empty(n), np.empty((n, 2)), np.empty((n, 2))
-    Fx = Fz = 0.0
-    for j in range(g.Z):
-        psi = 2 * np.pi * j / g.Z
-        if race == 0:
-            slice_contact_meridian(a["x"], a["rho"], 1, raw["poses"][j], g.alpha, g.Dpw, a["race_kind"][0],
-                                   a["race_par"][0], 0.0, 0.0, 0.0, d, nrm, pts)
-        else:
-            slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw, a["race_kind"][1],
-                                   a["race_par"][1], raw["ring"][1] * np.cos(psi), raw["ring"][0],
-                                   np.radians(tilt_deg) * np.cos(psi), d, nrm, pts)
-        load = raw["line_load"][j, race] * a["w"]
-        Fx += np.sum(load * nrm[:, 0]) * np.cos(psi)
-        Fz += np.sum(load * nrm[:, 1])
-    return Fx, Fz
-
-
-def _roller_residuals(model, raw, op, ext):
-    """Relative residual of every loaded roller: contact forces (recomputed from the returned
-    poses and ring) + centrifugal force + gyroscopic moment + external load, over its loads."""
-    g = model.geometry
-    a = g.arrays
-    body = model.body_loads(op)
-    out = []
-    for j in range(g.Z):
-        psi = 2 * np.pi * j / g.Z
-        q = raw["line_load"][j].copy()
-        f, K, Q = np.zeros(5), np.zeros((5, 5)), np.zeros(4)
-        roller_state(raw["poses"][j].copy(), raw["ring"], np.radians(op.tilt) * np.cos(psi), np.cos(psi), g.alpha,
-                     g.Dpw, a["x"], a["rho"], a["w"], a["race_kind"], a["race_par"], a["R_eq"], model.C, model.E_star,
-                     model.mode, model.k_line, a["rib"], g.type == "TRB", q, q > 0, 1e-13, f, K, Q)
-        if Q[0] + Q[1] == 0.0:
-            continue  # unloaded roller, held by the cage
-        ur, uz, vr, vz = roller_axes(g.alpha, raw["poses"][j, 2])
-        r = f[:3] + np.array([body[0] * ur, body[0] * vr, body[1]]) + ext[j]
-        out.append(max(abs(r[0]), abs(r[1]), abs(r[2]) / g.Lwe) / (Q[0] + Q[1] + Q[2]))
-    return np.array(out)
 
 
 # ------------------------------------------------------------------ item 2: large imposed tilt
@@ -81,9 +32,9 @@ def test_prototype_large_tilt_converges_and_balances(model_for, Fr, tilt):
     op = case(4500.0, Fr, tilt=tilt)
     raw = model.solve(op)
     assert raw["converged"]
-    Fx, Fz = _race_forces(model, raw, tilt, race=1)
+    Fx, Fz = race_forces(model, raw, 1, tilt)
     np.testing.assert_allclose([Fx + Fr, Fz + 4500.0], 0.0, atol=1e-8 * 4500.0)
-    res = _roller_residuals(model, raw, op, np.zeros((model.geometry.Z, 3)))
+    res = roller_residuals(model, raw, op, np.zeros((model.geometry.Z, 3)))
     assert len(res) > 0 and np.all(res < 1e-8)
 
 
@@ -119,7 +70,7 @@ def test_pinion_PCR200_contact_migrates_to_the_roller_edge(model_for):
     op = case(35000.0, 0.0, speed=1100.0)
     raw = model.solve(op)
     assert raw["converged"]
-    Fx, Fz = contact_forces_on_inner_ring(model, raw)
+    Fx, Fz = race_forces(model, raw)
     np.testing.assert_allclose([Fx, Fz + 35000.0], 0.0, atol=1e-8 * 35000.0)
     g = model.geometry
     q = raw["line_load"][0]
@@ -138,7 +89,7 @@ def _system_balance(model, raw, op, ext):
     the others) and the outer raceway's slice loads on the rollers (-q w n, n into the ring)."""
     g = model.geometry
     body = model.body_loads(op)
-    Fx_out, Fz_out = _race_forces(model, raw, op.tilt, race=0)
+    Fx_out, Fz_out = race_forces(model, raw, 0, op.tilt)
     Fx, Fz = op.Fr - Fx_out, op.Fa - Fz_out
     for j in range(g.Z):
         if raw["Q"][j].sum() == 0.0:
@@ -170,9 +121,9 @@ def test_axial_roller_load_shifts_the_roller_and_the_bearing_balances(model_for,
         assert raw["converged"]
         np.testing.assert_allclose(raw["residual"], 0.0, atol=1e-8 * 4500.0)
         if bearing != "trb_32208":  # the TRB rib carries part of Fa and Fr besides the raceway
-            Fx, Fz = _race_forces(model, raw, 0.0, race=1)
+            Fx, Fz = race_forces(model, raw, 1, 0.0)
             np.testing.assert_allclose([Fx + 2000.0, Fz + 4500.0], 0.0, atol=1e-8 * 4500.0)
-        assert np.all(_roller_residuals(model, raw, op, ext) < 1e-8)
+        assert np.all(roller_residuals(model, raw, op, ext) < 1e-8)
         np.testing.assert_allclose(_system_balance(model, raw, op, ext), 0.0, atol=1e-8 * 4500.0)
         raws[F] = raw
     loaded = raws[0.0]["Q"].sum(axis=1) > 0
@@ -212,7 +163,7 @@ def test_unequal_roller_loads_solve_every_roller(model_for):
     raw = model.solve(op, roller_loads=ext)
     assert raw["converged"] and raw["solver_info"]["roller_classes"] == Z
     assert raw["poses"][3, 0] > ref["poses"][3, 0]
-    assert np.all(_roller_residuals(model, raw, op, ext) < 1e-8)
+    assert np.all(roller_residuals(model, raw, op, ext) < 1e-8)
     np.testing.assert_allclose(_system_balance(model, raw, op, ext), 0.0, atol=1e-8 * 4500.0)
 
 
