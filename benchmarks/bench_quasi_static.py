@@ -28,11 +28,9 @@ import os
 import platform
 import shutil
 import statistics
-import subprocess
 import sys
 import tempfile
 import time
-from importlib import metadata
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
@@ -67,15 +65,6 @@ def parse_args(argv=None):
     return args
 
 
-def git_commit():
-    try:
-        out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO,
-                             capture_output=True, text=True, timeout=5)
-        return out.stdout.strip() if out.returncode == 0 and out.stdout.strip() else "unknown"
-    except (OSError, subprocess.SubprocessError):
-        return "unknown"
-
-
 def cpu_model():
     try:
         with open("/proc/cpuinfo") as fh:
@@ -85,13 +74,6 @@ def cpu_model():
     except OSError:
         pass
     return platform.processor() or "unknown"
-
-
-def package_version():
-    try:
-        return metadata.version("tsrb-workbench")
-    except metadata.PackageNotFoundError:
-        return "unknown"
 
 
 def timed_solve(model, op):
@@ -127,6 +109,7 @@ def run(args, cache_dir):
     if str(REPO) not in sys.path:
         sys.path.insert(0, str(REPO))  # run from a checkout without an installed package
     import sim
+    from sim.io import git_commit, package_version
     from sim.simulation import (BearingModel, Geometry, OperatingPoint, SolverSettings, build_friction, build_model,
                                 solve_case)
 

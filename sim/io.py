@@ -5,6 +5,7 @@ provenance (package version, git commit, resolved config, solver, creation time)
 that did not converge keeps its slot with ``converged = False`` and NaN data.
 """
 import datetime as _dt
+import functools
 import os
 import subprocess
 import tempfile
@@ -65,7 +66,9 @@ CASE_COORDS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
 FILL_VALUES = {"converged": False, "edge_stress": False, "iterations": 0}
 
 
-def _git_commit():
+@functools.lru_cache(maxsize=1)
+def git_commit():
+    """Commit of the checkout the package runs from, or "unknown" (looked up once per process)."""
     try:
         root = Path(__file__).resolve().parent.parent
         out = subprocess.run(["git", "rev-parse", "HEAD"], cwd=root, capture_output=True, text=True, timeout=5)
@@ -74,7 +77,8 @@ def _git_commit():
         return "unknown"
 
 
-def _version():
+def package_version():
+    """Installed version of tsrb-workbench, or the source version when not installed."""
     try:
         return metadata.version("tsrb-workbench")
     except metadata.PackageNotFoundError:
@@ -150,8 +154,8 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     ds.attrs.update({
         "Conventions": "CF-1.10",
         "title": f"{g.type} quasi-static load distribution and friction",
-        "package_version": _version(),
-        "git_commit": _git_commit(),
+        "package_version": package_version(),
+        "git_commit": git_commit(),
         "config": config_yaml,
         "solver": "quasi_static",
         "solver_settings": str(settings),
@@ -207,8 +211,8 @@ def failed_dataset(bearing, ops, config_yaml, message):
     converged = xr.Variable(("design", "case"), np.zeros((1, len(ops)), dtype=bool),
                             {"units": "1", "long_name": CASE_VARIABLES["converged"][2]})
     ds = xr.Dataset({"converged": converged}, coords=coords)
-    ds.attrs.update({"Conventions": "CF-1.10", "title": "failed design", "package_version": _version(),
-                     "git_commit": _git_commit(), "config": config_yaml, "error": message,
+    ds.attrs.update({"Conventions": "CF-1.10", "title": "failed design", "package_version": package_version(),
+                     "git_commit": git_commit(), "config": config_yaml, "error": message,
                      "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")})
     return ds
 
