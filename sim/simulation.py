@@ -51,6 +51,19 @@ class OperatingPoint:
         return cls(Fa, Fr, speed, tilt, temp)
 
 
+# Newton limits of sim.solvers.quasi_static: key -> (low, high, low end open, type); reasons in
+# conf/solver/quasi_static.yaml
+NEWTON_LIMITS = {
+    "roller_tolerance_ratio": (0.0, 1.0, True, float),
+    "forcing": (0.0, 1.0, False, float),
+    "roller_step_interference": (0.0, 10.0, True, float),
+    "roller_step_length": (0.0, 1.0, True, float),
+    "line_search_halvings": (0, 60, False, int),
+    "ring_step_fraction": (0.0, 10.0, True, float),
+    "continuation_steps": (0, 1000, False, int),
+}
+
+
 @dataclass(frozen=True)
 class SolverSettings:
     n_slices: int
@@ -80,26 +93,9 @@ class SolverSettings:
         tol = _check_range("solver.tolerance", solver["tolerance"], 1e-14, 1e-3, low_open=True)
         mi = int(_check_range("solver.max_iterations", solver["max_iterations"], 1, 10000))
         rmi = int(_check_range("solver.roller_max_iterations", solver["roller_max_iterations"], 1, 10000))
-        extra = dict(
-            roller_tolerance_ratio=_check_range("solver.roller_tolerance_ratio",
-                                                solver["roller_tolerance_ratio"],
-                                                0.0, 1.0, low_open=True),
-            forcing=_check_range("solver.forcing", solver["forcing"], 0.0, 1.0),
-            roller_step_interference=_check_range("solver.roller_step_interference",
-                                                  solver["roller_step_interference"], 0.0, 10.0, low_open=True),
-            roller_step_length=_check_range("solver.roller_step_length",
-                                            solver["roller_step_length"],
-                                            0.0, 1.0, low_open=True),
-            line_search_halvings=int(_check_range("solver.line_search_halvings",
-                                                  solver["line_search_halvings"],
-                                                  0, 60)),
-            ring_step_fraction=_check_range("solver.ring_step_fraction",
-                                            solver["ring_step_fraction"],
-                                            0.0, 10.0, low_open=True),
-            continuation_steps=int(_check_range("solver.continuation_steps",
-                                                solver["continuation_steps"],
-                                                0, 1000)),
-        )
+        extra = {}
+        for key, (low, high, low_open, kind) in NEWTON_LIMITS.items():
+            extra[key] = kind(_check_range(f"solver.{key}", solver[key], low, high, low_open=low_open))
         return cls(int(n), el, tol, mi, rmi, bool(solver["centrifugal"]), bool(solver["gyroscopic"]), **extra)
 
 
