@@ -9,11 +9,14 @@ modulus of the EHL formulas is Hamrock's ``E' = 2 E*`` (E* of :func:`sim.contact
 - Solid load share Phi = exp(-B_ZH Lambda^C_ZH), thesis eq. (5.16), Lambda = h / sigma (2.27).
 - Traction stress (5.17): tau = Phi tau_S + (1 - Phi) tau_L with the solid part Coulomb
   (mu_s p, regularised by tanh(|v| / v_s)) and the lubricant part visco-elastic (Maxwell:
-  Barus viscosity in series with the shear modulus G over the transit time 2b/u, Johnson &
-  Tevaarwerk 1977) up to a limiting shear stress tau_lim = tau_L0 + c p (Bair & Winer 1979),
+  the viscosity at the local pressure, Barus or Roelands, in series with the shear modulus G
+  over the transit time 2b/u, Johnson & Tevaarwerk 1977) up to a limiting shear stress tau_lim = tau_L0 + c p (Bair & Winer 1979),
   combined smoothly as tau_lim tanh(k |v| / tau_lim).
 - Rolling resistance of the lubricant: Zhou & Hoeprich (1991) hydrodynamic rolling force of a
   line contact; of the material: elastic hysteresis (Johnson 1985, 9.2).
+- Shear heating of a contact (the thermal reduction of the traction, :mod:`sim.friction`):
+  mid-film temperature rise of Couette heating, and the mean flash temperature of the surfaces
+  under a moving band heat source (Jaeger 1942, Blok 1937 partition).
 """
 import numpy as np
 
@@ -22,6 +25,12 @@ from sim._jit import kernel
 FILM_PAN_HAMROCK = 0
 FILM_DOWSON_HIGGINSON = 1
 FILM_FORMULAS = {"pan_hamrock": FILM_PAN_HAMROCK, "dowson_higginson": FILM_DOWSON_HIGGINSON}
+PV_BARUS = 0
+PV_ROELANDS = 1
+PRESSURE_VISCOSITY_MODELS = {"barus": PV_BARUS, "roelands": PV_ROELANDS}
+#: Roelands (1966) constants: eta_inf = 6.31e-5 Pa s [MPa s] and p_R = 1/5.1e-9 Pa [MPa].
+ROELANDS_ETA_INF = 6.31e-11
+ROELANDS_P_R = 196.1
 
 
 @kernel
@@ -130,6 +139,38 @@ def rolling_force_hysteresis(q, b, R, width, loss_factor):
 
 
 @kernel
+def film_temperature_rise(q_film, h, k_oil):
+    """Mid-plane temperature rise of a sheared film over its surfaces [K].
+
+    Heat q_film = tau v per unit area generated uniformly across a film of thickness h and
+    conducted to both walls gives a parabolic profile with the peak q_film h / (8 k_oil) at
+    mid-film, where the shear concentrates (Crook 1961; Olver & Spikes 1998).
+
+    q_film [N/(mm s)] (= kW/m^2), h [mm], k_oil [W/(m K)] (= N/(s K) in any length unit).
+    """
+    return q_film * h / (8.0 * k_oil)
+
+
+@kernel
+def flash_temperature_rise(q, half_length, U1, U2, k_s, kappa_s):
+    """Mean surface temperature rise of a contact band under frictional heating [K].
+
+    Each surface passes the band of length 2 half_length at its speed U_i; at high Peclet
+    number (U l / (2 kappa) > 5, bearing contacts: 10-100) it heats as a semi-infinite solid
+    under a constant flux for the time x/U_i: T(x) = 2 q_i sqrt(kappa x / (pi U_i)) / k
+    (Carslaw & Jaeger 1959, 2.9; Jaeger 1942), mean over the band 2/3 of the exit value. Blok's
+    (1937) partition q_i ~ sqrt(U_i) makes both surfaces equally hot:
+    T = (4/3) q sqrt(2 l kappa / pi) / (k (sqrt(U1) + sqrt(U2))).
+
+    q [N/(mm s)], half_length [mm], U1, U2 [mm/s], k_s [W/(m K)], kappa_s [mm^2/s].
+    """
+    su = np.sqrt(abs(U1)) + np.sqrt(abs(U2))
+    if q <= 0.0 or su <= 0.0:
+        return 0.0
+    return 4.0 / 3.0 * q * np.sqrt(2.0 * half_length * kappa_s / np.pi) / (k_s * su)
+
+
+@kernel
 def _tanh_over_x(x):
     """tanh(x)/x, continuous at 0 (series 1 - x^2/3 below 1e-4, where its error is < 1e-17)."""
     if x < 1e-4:
@@ -138,14 +179,40 @@ def _tanh_over_x(x):
 
 
 @kernel
-def traction_per_speed(p, v, h, phi, eta0, alpha_p, tau0, c_tau, mu_s, v_s, G, t_transit):
+def roelands_index(eta0, alpha_p):
+    """Roelands pressure-viscosity index Z [1] with the Barus coefficient as its slope at p = 0.
+
+    d ln(eta)/dp at p = 0 of :func:`pressure_viscosity` is ln(eta0/eta_inf) Z / p_R, so
+    Z = alpha_p p_R / ln(eta0/eta_inf) (Hamrock, Schmid & Jacobson 2004, ch. 4). eta0 [MPa s]
+    at the oil temperature, alpha_p [1/MPa].
+    """
+    return alpha_p * ROELANDS_P_R / np.log(eta0 / ROELANDS_ETA_INF)
+
+
+@kernel
+def pressure_viscosity(p, eta, alpha_p, z, model):
+    """Viscosity at pressure p [MPa s].
+
+    PV_BARUS: eta exp(alpha_p p). PV_ROELANDS (Roelands 1966):
+    eta exp(ln(eta/eta_inf) ((1 + p/p_R)^z - 1)), eta_inf = 6.31e-5 Pa s, p_R = 196.1 MPa; as
+    eta falls with temperature the pressure rise weakens too (the coupling Barus lacks).
+
+    p [MPa] >= 0; eta: ambient-pressure viscosity at the film temperature [MPa s]; alpha_p
+    [1/MPa]; z: :func:`roelands_index` of the oil at its bulk temperature [1].
+    """
+    if model == PV_BARUS:
+        return eta * np.exp(alpha_p * p)
+    return eta * np.exp(np.log(eta / ROELANDS_ETA_INF) * ((1.0 + p / ROELANDS_P_R) ** z - 1.0))
+
+
+@kernel
+def traction_per_speed(p, v, h, phi, eta_p, tau0, c_tau, mu_s, v_s, G, t_transit):
     """Traction stress over sliding speed, tau(p, |v|) / |v| [MPa s/mm], thesis (5.17).
 
     tau = phi mu_s p tanh(|v|/v_s) + (1 - phi) tau_lim tanh(k |v| / tau_lim) with
     tau_lim = tau0 + c_tau p (Bair & Winer 1979) and the low-slip slope of a Maxwell fluid
-    sheared for the transit time t of a contact, 1/k = h (1/eta(p) + 1/(G t)) with Barus
-    eta(p) = eta0 exp(alpha_p p) (Johnson & Tevaarwerk 1977). The traction on a surface is
-    -tau v/|v|: the returned ratio times -v.
+    sheared for the transit time t of a contact, 1/k = h (1/eta(p) + 1/(G t)) (Johnson &
+    Tevaarwerk 1977). The traction on a surface is -tau v/|v|: the returned ratio times -v.
 
     Parameters
     ----------
@@ -157,7 +224,9 @@ def traction_per_speed(p, v, h, phi, eta0, alpha_p, tau0, c_tau, mu_s, v_s, G, t
         Film thickness [mm] (0: no film, phi must then be 1).
     phi : float
         Solid load share (5.16) [1].
-    eta0 [MPa s], alpha_p [1/MPa], tau0 [MPa], c_tau [1], mu_s [1], v_s [mm/s], G [MPa] :
+    eta_p : float
+        Film viscosity at the pressure p (:func:`pressure_viscosity`) [MPa s].
+    tau0 [MPa], c_tau [1], mu_s [1], v_s [mm/s], G [MPa] :
         Lubricant and boundary-friction parameters.
     t_transit : float
         Transit time of the lubricant through the contact, contact length / entrainment speed [s].
@@ -165,6 +234,6 @@ def traction_per_speed(p, v, h, phi, eta0, alpha_p, tau0, c_tau, mu_s, v_s, G, t
     g = phi * mu_s * p * _tanh_over_x(v / v_s) / v_s
     if phi < 1.0 and h > 0.0:
         tau_lim = tau0 + c_tau * p
-        k = 1.0 / (h * (np.exp(-alpha_p * p) / eta0 + 1.0 / (G * t_transit)))   # [MPa s/mm]
+        k = 1.0 / (h * (1.0 / eta_p + 1.0 / (G * t_transit)))   # [MPa s/mm]
         g += (1.0 - phi) * k * _tanh_over_x(k * v / tau_lim)
     return g

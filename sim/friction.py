@@ -43,8 +43,8 @@ import numpy as np
 
 from sim._jit import kernel
 from sim.contact import roller_axes, slice_contact_meridian, hertz_line_half_width, hertz_line_pressure
-from sim.ehl import (film_line, film_point, solid_load_share, rolling_force_hydrodynamic,
-                     rolling_force_hysteresis, traction_per_speed)
+from sim.ehl import (film_line, film_point, film_temperature_rise, flash_temperature_rise, solid_load_share,
+                     pressure_viscosity, roelands_index, rolling_force_hydrodynamic, rolling_force_hysteresis, traction_per_speed)
 
 # Loss and torque channels of the kernels (order of the DATA.md `component` coordinate).
 COMPONENTS = ["rolling", "hysteresis", "sliding", "drilling", "rib", "cage", "drag"]
@@ -55,8 +55,9 @@ EV_P0 = 4
 NEV = EV_P0 + NC
 # Friction parameters, packed for the kernels (built by FrictionModel from the config)
 (PAR_ETA0, PAR_ALPHA, PAR_TAU0, PAR_CTAU, PAR_MU_S, PAR_V_S, PAR_HYST, PAR_MU_CAGE, PAR_SIGMA, PAR_B, PAR_C,
- PAR_SIGMA_RIB, PAR_B_RIB, PAR_C_RIB, PAR_EPRIME, PAR_FILM, PAR_DRAG_K, PAR_RHO_M, PAR_G) = range(19)
-NPAR = 19
+ PAR_SIGMA_RIB, PAR_B_RIB, PAR_C_RIB, PAR_EPRIME, PAR_FILM, PAR_DRAG_K, PAR_RHO_M, PAR_G,
+ PAR_THERMAL, PAR_BETA, PAR_K_OIL, PAR_K_STEEL, PAR_KAPPA_STEEL, PAR_DT_TOL, PAR_PV_MODEL, PAR_Z) = range(27)
+NPAR = 27
 
 
 @kernel
@@ -112,30 +113,113 @@ def _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz):
 
 
 @kernel
-def lubrication_state(wR, wc, wi, q, Qrib, X, Cen, Ax, Xrib, R_eq, w, E_star, rib, par,
-                      h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib):
-    """Film, solid load share, rolling resistance forces and Hertz data of every loaded contact.
+def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, tq, wq):
+    """Mean frictional heat flux of a contact [N/(mm s)]: (lubricant film, total).
+
+    Line slice (bk > 0): traction (5.17) at the Hertz pressure p0 cos(t) and the sliding speed
+    sqrt(st^2 + (y ws)^2), y = b sin(t), averaged over the width as in :func:`_slice_friction`;
+    point contact (bk = 0, the rib): at the mean pressure p0k and the speed |st|. ``theta``
+    scales the ambient viscosity (thermal reduction).
+    """
+    eta = par[PAR_ETA0] * theta
+    q_tot = 0.0
+    q_sol = 0.0
+    npts = tq.shape[0] if bk > 0.0 else 1
+    for i in range(npts):
+        if bk > 0.0:
+            ct = np.cos(tq[i])
+            p = p0k * ct
+            vy = bk * np.sin(tq[i]) * ws
+            v = np.sqrt(st * st + vy * vy)
+            weight = ct * wq[i]                  # sum of cos(t) w over (0, pi/2) = 1
+        else:
+            p = p0k
+            v = abs(st)
+            weight = 1.0
+        eta_p = pressure_viscosity(p, eta, par[PAR_ALPHA], par[PAR_Z], int(par[PAR_PV_MODEL]))
+        g = traction_per_speed(p, v, hk, phik, eta_p, par[PAR_TAU0], par[PAR_CTAU], par[PAR_MU_S], par[PAR_V_S],
+                               par[PAR_G], 1e300)
+        q_tot += weight * g * v * v
+        q_sol += weight * phik * par[PAR_MU_S] * p * v * np.tanh(v / par[PAR_V_S])
+    return q_tot - q_sol, q_tot
+
+
+@kernel
+def _viscosity_factor(p0k, bk, hk, phik, st, ws, half_length, U1, U2, par, tq, wq):
+    """Thermal reduction of the film viscosity in the traction, theta = exp(-beta dT) [1].
+
+    dT is the film temperature of the contact's own shear heating: the flash temperature of the
+    surfaces under the total frictional heat plus the mid-film rise under the film's heat
+    (sim.ehl.flash_temperature_rise, film_temperature_rise), with the viscosity at the raised
+    temperature, eta0 exp(alpha p - beta dT) (Reynolds' exponential law, beta the local
+    slope of the lubricant's Ubbelohde-Walther line). Heating falls as dT rises, so
+    f(dT) = dT - rise(q(theta(dT))) has one root in [0, rise(q(1))], found by Illinois
+    steps to par[PAR_DT_TOL] K. The maximum traction (limiting shear) is not reduced; the
+    Maxwell transit-time term is left out of the heat estimate (it only matters at
+    microslip, where the heat is negligible).
+    """
+    if par[PAR_THERMAL] == 0.0 or hk <= 0.0:
+        return 1.0
+    beta = par[PAR_BETA]
+    tol = par[PAR_DT_TOL]
+
+    def rise(dT):
+        q_film, q_tot = _heat_flux(np.exp(-beta * dT), p0k, bk, hk, phik, st, ws, par, tq, wq)
+        return (film_temperature_rise(q_film, hk, par[PAR_K_OIL])
+                + flash_temperature_rise(q_tot, half_length, U1, U2, par[PAR_K_STEEL], par[PAR_KAPPA_STEEL]))
+
+    hi = rise(0.0)
+    if hi <= tol:
+        return np.exp(-beta * hi)
+    lo = 0.0
+    flo = -hi
+    fhi = hi - rise(hi)
+    if abs(fhi) <= tol:      # heat independent of the viscosity: the film is at its limiting shear stress
+        return np.exp(-beta * hi)
+    side = 0
+    for _ in range(100):
+        if fhi - flo <= 0.0 or hi - lo <= tol:
+            break
+        x = (lo * fhi - hi * flo) / (fhi - flo)
+        fx = x - rise(x)
+        if abs(fx) <= tol:
+            lo = x
+            hi = x
+            break
+        lo, hi, flo, fhi, side = _illinois(lo, hi, flo, fhi, x, fx, side)
+    return np.exp(-beta * 0.5 * (lo + hi))
+
+
+@kernel
+def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, w, E_star, rib, par, tq, wq,
+                      h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Th, Thrib):
+    """Film, solid load share, rolling resistance forces, Hertz data and thermal viscosity factor
+    of every loaded contact, at the speeds wR, wc.
 
     Parameters
     ----------
     wR : ndarray (Z,)
         Roller speeds about u' [rad/s]. wc, wi: cage and inner-ring speeds [rad/s].
+    active : ndarray (Z,) of bool
+        Rollers to evaluate; the others' arrays are left as they are (the caller never reads them).
     q : ndarray (Z, 2, N)
         Line loads [N/mm]. Qrib (Z,): rib loads [N].
     R_eq : ndarray (2, N)
         Radii of relative curvature [mm]. w: slice width [mm]. E_star: contact modulus [MPa].
     par : ndarray (NPAR,)
-        Friction parameters (module constants PAR_*).
-    h, Phi, Fh, Fy, p0, b : ndarray (Z, 2, N)
+        Friction parameters (module constants PAR_*). tq, wq: width quadrature nodes and weights.
+    h, Phi, Fh, Fy, p0, b, Th : ndarray (Z, 2, N)
         Film [mm], solid load share [1], hydrodynamic and hysteresis rolling forces [N],
-        Hertz pressure [MPa] and half-width [mm] (written; 0 where unloaded).
-    hrib, Phirib, prib : ndarray (Z,)
-        Rib film [mm], load share [1] and Hertz mean pressure [MPa] (written).
+        Hertz pressure [MPa], half-width [mm] and viscosity factor [1] (written; 0 where unloaded).
+    hrib, Phirib, prib, Thrib : ndarray (Z,)
+        Rib film [mm], load share [1], Hertz mean pressure [MPa] and viscosity factor [1] (written).
     """
     Z = q.shape[0]
     n = q.shape[2]
     Ep = par[PAR_EPRIME]
     for j in range(Z):
+        if not active[j]:
+            continue
         cr = Cen[j, 0]
         cz = Cen[j, 1]
         ur = Ax[j, 0]
@@ -151,6 +235,7 @@ def lubrication_state(wR, wc, wi, q, Qrib, X, Cen, Ax, Xrib, R_eq, w, E_star, ri
                     Fy[j, s, k] = 0.0
                     p0[j, s, k] = 0.0
                     b[j, s, k] = 0.0
+                    Th[j, s, k] = 1.0
                     continue
                 v1, v2 = _surface_speeds(wR[j], Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
                 u = 0.5 * abs(v1 + v2)
@@ -163,9 +248,13 @@ def lubrication_state(wR, wc, wi, q, Qrib, X, Cen, Ax, Xrib, R_eq, w, E_star, ri
                 b[j, s, k] = bk
                 p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
                 Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par[PAR_HYST])
+                ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
+                Th[j, s, k] = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], v1 - v2, ws, bk, v1, v2, par,
+                                                tq, wq)
         hrib[j] = 0.0
         Phirib[j] = 0.0
         prib[j] = 0.0
+        Thrib[j] = 1.0
         if Qrib[j] > 0.0:
             v1, v2 = _surface_speeds(wR[j], wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
             u = 0.5 * abs(v1 + v2)
@@ -175,15 +264,17 @@ def lubrication_state(wR, wc, wi, q, Qrib, X, Cen, Ax, Xrib, R_eq, w, E_star, ri
             prib[j] = Qrib[j] / (np.pi * a * a)
             hrib[j] = film_point(u, Qrib[j], R_end, R_end, par[PAR_ETA0], par[PAR_ALPHA], Ep)
             Phirib[j] = solid_load_share(hrib[j], par[PAR_SIGMA_RIB], par[PAR_B_RIB], par[PAR_C_RIB])
+            Thrib[j] = _viscosity_factor(prib[j], 0.0, hrib[j], Phirib[j], v1 - v2, 0.0, a, v1, v2, par, tq, wq)
 
 
 @kernel
-def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, Frr, Req, w, par, tq, wq, ev,
+def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, eta, Frr, Req, w, par, tq, wq, ev,
                     outer):
     """Add one slice's friction to the roller evaluation vector ``ev`` (module docstring).
 
-    Returns the tangential force F_t [N], the sliding speed s [mm/s] and the rolling-resistance
-    power [N mm/s]; the caller splits -F_t s into sliding and drilling.
+    ``eta``: ambient viscosity of the film after its thermal reduction [MPa s]. Returns the
+    tangential force F_t [N], the sliding speed s [mm/s] and the rolling-resistance power
+    [N mm/s]; the caller splits -F_t s into sliding and drilling.
     """
     v1, v2 = _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz)
     st = v1 - v2
@@ -201,8 +292,9 @@ def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, F
         p = p0k * ct
         vy = y * ws
         v = np.sqrt(st * st + vy * vy)
-        g = traction_per_speed(p, v, hk, phik, par[PAR_ETA0], par[PAR_ALPHA], par[PAR_TAU0], par[PAR_CTAU],
-                               par[PAR_MU_S], par[PAR_V_S], par[PAR_G], t_transit)
+        eta_p = pressure_viscosity(p, eta, par[PAR_ALPHA], par[PAR_Z], int(par[PAR_PV_MODEL]))
+        g = traction_per_speed(p, v, hk, phik, eta_p, par[PAR_TAU0], par[PAR_CTAU], par[PAR_MU_S], par[PAR_V_S],
+                               par[PAR_G], t_transit)
         dA = 2.0 * w * bk * ct * wq[i]
         Ft -= g * st * dA
         Mn -= g * y * vy * dA
@@ -222,7 +314,7 @@ def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, F
 
 @kernel
 def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, par, tq, wq, ev):
+                    Phirib, Th, Thrib, par, tq, wq, ev):
     """Friction of roller j at roller speed wR and cage speed wc [rad/s]: fills ``ev`` (NEV,).
 
     ev: moment about the roller axis [N mm], z-moment of the contacts on the roller [N mm],
@@ -247,7 +339,8 @@ def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, F
                 continue
             frr = Fh[j, s, k] + Fy[j, s, k]
             Ft, st, prr = _slice_friction(wR, Om, X[j, s, k, 0], X[j, s, k, 1], Nrm[j, s, k, 0], Nrm[j, s, k, 1],
-                                          cr, cz, ur, uz, p0[j, s, k], b[j, s, k], h[j, s, k], Phi[j, s, k], frr,
+                                          cr, cz, ur, uz, p0[j, s, k], b[j, s, k], h[j, s, k], Phi[j, s, k],
+                                          par[PAR_ETA0] * Th[j, s, k], frr,
                                           R_eq[s, k], w, par, tq, wq, ev, s == 0)
             F_sum += Ft
             P_slip -= Ft * st
@@ -266,8 +359,10 @@ def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, F
         st = v1 - v2
         a_rib = np.sqrt(Qrib[j] / (np.pi * prib[j]))               # Hertz radius [mm]
         t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), 1e-300)
-        g = traction_per_speed(prib[j], abs(st), hrib[j], Phirib[j], par[PAR_ETA0], par[PAR_ALPHA],
-                               par[PAR_TAU0], par[PAR_CTAU], par[PAR_MU_S], par[PAR_V_S], par[PAR_G], t_transit)
+        eta_p = pressure_viscosity(prib[j], par[PAR_ETA0] * Thrib[j], par[PAR_ALPHA], par[PAR_Z],
+                                   int(par[PAR_PV_MODEL]))
+        g = traction_per_speed(prib[j], abs(st), hrib[j], Phirib[j], eta_p, par[PAR_TAU0], par[PAR_CTAU],
+                               par[PAR_MU_S], par[PAR_V_S], par[PAR_G], t_transit)
         F = -g * st * Qrib[j] / prib[j]
         ev[EV_MU] += F * (uz * (Xrib[j, 0] - cr) - ur * (Xrib[j, 1] - cz))
         ev[EV_TZ] += F * Xrib[j, 0]
@@ -312,7 +407,7 @@ def _illinois(lo, hi, flo, fhi, x, fx, side):
 
 @kernel
 def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, par, tq, wq, ev, tol_M, max_iter):
+                        Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter):
     """omega_R of roller j with zero moment about its axis (bracketing + Illinois regula falsi).
 
     Returns (omega_R [rad/s], converged). M(omega_R) falls with omega_R: more spin, more drag.
@@ -320,17 +415,17 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
     lo = 0.9 * w0
     hi = 1.1 * w0
     roller_friction(j, lo, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, par, tq, wq, ev)
+                    Phirib, Th, Thrib, par, tq, wq, ev)
     flo = ev[EV_MU]
     roller_friction(j, hi, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, par, tq, wq, ev)
+                    Phirib, Th, Thrib, par, tq, wq, ev)
     fhi = ev[EV_MU]
     for grow in range(max_iter):
         if flo * fhi <= 0.0:
             break
         lo, hi, flo, fhi, x, x_is_hi = _widen(lo, hi, flo, fhi)
         roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, par, tq, wq, ev)
+                        Phirib, Th, Thrib, par, tq, wq, ev)
         if x_is_hi:
             fhi = ev[EV_MU]
         else:
@@ -342,7 +437,7 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
     for it in range(max_iter):
         x = hi - fhi * (hi - lo) / (fhi - flo)
         roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, par, tq, wq, ev)
+                        Phirib, Th, Thrib, par, tq, wq, ev)
         fx = ev[EV_MU]
         if abs(fx) <= tol_M:
             return x, True
@@ -352,7 +447,7 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
 
 @kernel
 def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib,
-                 hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals):
+                 hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals):
     """Sum of the z-moments on all rollers at cage speed wc, each roller at its own moment balance.
 
     wR (Z,) holds start values in and solved speeds out; ``totals`` (NEV,) gets the weighted
@@ -365,11 +460,11 @@ def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b,
         if not active[j]:
             continue
         wj, conv = _solve_roller_speed(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                       R_eq, w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter)
+                                       R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter)
         ok = ok and conv
         wR[j] = wj
         roller_friction(j, wj, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, par, tq, wq, ev)
+                        Phirib, Th, Thrib, par, tq, wq, ev)
         for i in range(NEV):
             totals[i] += weight[j] * ev[i]
     return totals[EV_TZ], ok
@@ -377,7 +472,7 @@ def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b,
 
 @kernel
 def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                     prib, hrib, Phirib, par, tq, wq, tol_M, tol_T, max_iter, totals):
+                     prib, hrib, Phirib, Th, Thrib, par, tq, wq, tol_M, tol_T, max_iter, totals):
     """Cage speed with zero z-moment on the cage and roller speeds with zero spin moment.
 
     Parameters
@@ -403,15 +498,15 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
     lo = 0.95 * wc0
     hi = 1.05 * wc0
     flo, ok = _cage_moment(lo, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                            w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
+                            w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
     fhi, ok = _cage_moment(hi, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                            w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
+                            w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
     for grow in range(max_iter):
         if flo * fhi <= 0.0:
             break
         lo, hi, flo, fhi, x, x_is_hi = _widen(lo, hi, flo, fhi)
         fx, ok = _cage_moment(x, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                              w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
+                              w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
         if x_is_hi:
             fhi = fx
         else:
@@ -423,7 +518,7 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
     for it in range(max_iter):
         x = hi - fhi * (hi - lo) / (fhi - flo)
         fx, ok = _cage_moment(x, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                              w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter, totals)
+                              w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
         if abs(fx) <= tol_T:
             return x, ok
         lo, hi, flo, fhi, side = _illinois(lo, hi, flo, fhi, x, fx, side)
@@ -432,7 +527,7 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
 
 @kernel
 def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                         prib, hrib, Phirib, par, tq, wq, ev, M, T, totals):
+                         prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M, T, totals):
     """Roller spin moments M (Z,) and cage z-moments per roller T (Z,) [N mm] at (wR, wc); sums into totals."""
     for i in range(NEV):
         totals[i] = 0.0
@@ -442,7 +537,7 @@ def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib
         if not active[j]:
             continue
         roller_friction(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, par, tq, wq, ev)
+                        Phirib, Th, Thrib, par, tq, wq, ev)
         M[j] = ev[EV_MU]
         T[j] = weight[j] * ev[EV_TZ]
         for i in range(NEV):
@@ -451,7 +546,7 @@ def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib
 
 @kernel
 def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh,
-                            Fy, R_eq, w, prib, hrib, Phirib, par, tq, wq, tol_M, tol_T, max_iter, totals):
+                            Fy, R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, tol_M, tol_T, max_iter, totals):
     """Newton on all roller speeds and the cage speed together (arrow-shaped Jacobian).
 
     Roller j's spin moment depends on its own speed and the cage speed only, so the Jacobian
@@ -480,9 +575,9 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
     for j in range(Z):
         if presolve and active[j]:
             wR[j], conv = _solve_roller_speed(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                              R_eq, w, prib, hrib, Phirib, par, tq, wq, ev, tol_M, max_iter)
+                                              R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter)
     _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                         prib, hrib, Phirib, par, tq, wq, ev, M, T, totals)
+                         prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M, T, totals)
     for it in range(max_iter):
         norm = (T.sum() / tol_T) ** 2
         worst = abs(T.sum()) / tol_T
@@ -494,7 +589,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
         # Jacobian by forward differences
         hc = 1e-7 * abs(wc)
         _kinematic_residuals(wc + hc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                             R_eq, w, prib, hrib, Phirib, par, tq, wq, ev, M2, T2, tmp)
+                             R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M2, T2, tmp)
         for j in range(Z):
             dMdc[j] = (M2[j] - M[j]) / hc
             dTdc[j] = (T2[j] - T[j]) / hc
@@ -506,7 +601,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
             hj = 1e-7 * abs(wR[j])
             wtrial[j] = wR[j] + hj
             roller_friction(j, wtrial[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                            prib, hrib, Phirib, par, tq, wq, ev)
+                            prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev)
             wtrial[j] = wR[j]
             dMdw[j] = (ev[EV_MU] - M[j]) / hj
             dTdw[j] = (weight[j] * ev[EV_TZ] - T[j]) / hj
@@ -528,7 +623,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
             for j in range(Z):
                 wtrial[j] = wR[j] + step * dw[j]
             _kinematic_residuals(wc + step * dc, wi, wtrial, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h,
-                                 Phi, Fh, Fy, R_eq, w, prib, hrib, Phirib, par, tq, wq, ev, M2, T2, tmp)
+                                 Phi, Fh, Fy, R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M2, T2, tmp)
             trial = (T2.sum() / tol_T) ** 2
             for j in range(Z):
                 trial += (M2[j] / tol_M) ** 2
@@ -563,8 +658,8 @@ class FrictionModel:
         ``bearing.surface``: sigma [um], B_ZH, C_ZH (and the rib's for a TRB).
     """
 
-    def __init__(self, geometry, E_star, lubricant, friction, surface):
-        from sim.ehl import FILM_FORMULAS
+    def __init__(self, geometry, E_star, lubricant, friction, surface, material):
+        from sim.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS
         from sim.simulation import InputError, _check_range
 
         g = self.geometry = geometry
@@ -591,6 +686,7 @@ class FrictionModel:
             raise InputError(f"friction.drag.model = {model!r} is not one of ['none', 'roller_drag']")
         par = np.zeros(NPAR)
         par[PAR_ALPHA] = lubricant.pressure_viscosity
+        par[PAR_PV_MODEL] = PRESSURE_VISCOSITY_MODELS[lubricant.pressure_viscosity_model]
         par[PAR_TAU0] = lubricant.limiting_shear_stress_0
         par[PAR_CTAU] = lubricant.limiting_shear_coefficient
         par[PAR_G] = lubricant.shear_modulus
@@ -609,6 +705,18 @@ class FrictionModel:
             par[PAR_SIGMA_RIB] = 1e-3 * _check_range("bearing.surface.sigma_rib", surface["sigma_rib"], 0.0, 10.0, low_open=True)
             par[PAR_B_RIB] = _check_range("bearing.surface.B_ZH_rib", surface["B_ZH_rib"], 0.0, 20.0, low_open=True)
             par[PAR_C_RIB] = _check_range("bearing.surface.C_ZH_rib", surface["C_ZH_rib"], 0.0, 5.0, low_open=True)
+        par[PAR_THERMAL] = 1.0 if bool(friction["thermal"]) else 0.0
+        par[PAR_K_OIL] = lubricant.thermal_conductivity
+        if friction["thermal"]:
+            for key in ("thermal_conductivity", "specific_heat"):
+                if key not in material:
+                    raise InputError(f"material.{key} is missing (flash temperature of friction.thermal)")
+            k_s = _check_range("material.thermal_conductivity", material["thermal_conductivity"], 1.0, 500.0)
+            c_s = _check_range("material.specific_heat", material["specific_heat"], 100.0, 5000.0)
+            par[PAR_K_STEEL] = k_s
+            par[PAR_KAPPA_STEEL] = 1e6 * k_s / (float(material["density"]) * c_s)     # mm^2/s
+        par[PAR_DT_TOL] = _check_range("friction.temperature_tolerance", friction["temperature_tolerance"], 0.0, 10.0,
+                                       low_open=True)
         par[PAR_EPRIME] = 2.0 * E_star
         par[PAR_FILM] = FILM_FORMULAS[film]
         par[PAR_RHO_M] = 0.5 * g.Dwe
@@ -640,6 +748,8 @@ class FrictionModel:
         par = self.par.copy()
         eta0 = self.lubricant.dynamic_viscosity(op.oil_temperature) * 1e-6      # MPa s
         par[PAR_ETA0] = eta0
+        par[PAR_BETA] = float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature))
+        par[PAR_Z] = roelands_index(eta0, par[PAR_ALPHA]) if par[PAR_ALPHA] > 0.0 else 0.0
         par[PAR_DRAG_K] = self.drag_factor * float(self.lubricant.density(op.oil_temperature))
         X = np.zeros((Z, 2, n, 2))
         Nrm = np.zeros((Z, 2, n, 2))
@@ -670,7 +780,8 @@ class FrictionModel:
             weight[1:(Z + 1) // 2] = 2.0
         shape = (Z, 2, n)
         h, Phi, Fh, Fy, p0, b = (np.zeros(shape) for _ in range(6))
-        hrib, Phirib, prib = np.zeros(Z), np.zeros(Z), np.zeros(Z)
+        Th = np.ones(shape)
+        hrib, Phirib, prib, Thrib = np.zeros(Z), np.zeros(Z), np.zeros(Z), np.ones(Z)
         totals = np.zeros(NEV)
         ev = np.zeros(NEV)
         mu_ref = max(par[PAR_MU_S], par[PAR_CTAU])
@@ -680,11 +791,11 @@ class FrictionModel:
         # film from the speeds of the previous pass: rolling kinematics, then the traction solution
         passes = 2 if self.traction_kinematics and start is None else 1
         for film_pass in range(passes):
-            lubrication_state(wR, wc, wi, q, Qrib, X, Cen, Ax, Xrib, a["R_eq"], g.slice_width, self.E_star,
-                              a["rib"], par, h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib)
+            lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, a["R_eq"], g.slice_width, self.E_star,
+                              a["rib"], par, self.tq, self.wq, h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Th, Thrib)
             if self.traction_kinematics:
                 args = (wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
-                        g.slice_width, prib, hrib, Phirib, par, self.tq, self.wq, tol_M, tol_T, self.max_iterations,
+                        g.slice_width, prib, hrib, Phirib, Th, Thrib, par, self.tq, self.wq, tol_M, tol_T, self.max_iterations,
                         totals)
                 start_c, start_R = wc, wR.copy()
                 wc, converged = solve_kinematics_newton(wc, film_pass == 0 and start is None, *args)
@@ -694,14 +805,14 @@ class FrictionModel:
         if not self.traction_kinematics:
             for j in np.flatnonzero(active):
                 roller_friction(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
-                                g.slice_width, prib, hrib, Phirib, par, self.tq, self.wq, ev)
+                                g.slice_width, prib, hrib, Phirib, Th, Thrib, par, self.tq, self.wq, ev)
                 totals += weight[j] * ev
         # cage pocket friction on each roller, force along v' (module docstring): the friction
         # load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
         roller_loads = np.zeros((Z, 3))
         for jj in np.flatnonzero(active):
             roller_friction(jj, wR[jj], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
-                            g.slice_width, prib, hrib, Phirib, par, self.tq, self.wq, ev)
+                            g.slice_width, prib, hrib, Phirib, Th, Thrib, par, self.tq, self.wq, ev)
             F_cage = par[PAR_DRAG_K] * wc * wc - ev[EV_FT]
             roller_loads[jj, 1] = par[PAR_MU_CAGE] * F_cage * np.sign(wR[jj])
         if symmetric:

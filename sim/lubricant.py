@@ -3,8 +3,8 @@
 Viscosity-temperature: Ubbelohde-Walther, DIN 51563 / ASTM D341,
 ``log10(log10(nu + 0.7)) = A - B log10(T)`` with nu in mm^2/s and T in K, fitted through the
 points of the lubricant config (two points) or through one point with a given slope B.
-Density: linear in temperature. Pressure-viscosity: Barus, ``eta(p) = eta0 exp(alpha p)``
-(used by :mod:`sim.ehl`). Every parameter comes from ``conf/lubricant/*.yaml``.
+Density: linear in temperature. Pressure-viscosity: Barus or Roelands with the Barus coefficient
+as its initial slope (:func:`sim.ehl.pressure_viscosity`). Every parameter comes from ``conf/lubricant/*.yaml``.
 """
 from dataclasses import dataclass
 
@@ -27,9 +27,11 @@ class Lubricant:
     """Oil of one ``lubricant`` config node.
 
     Attributes: Walther constants ``A``, ``B`` [1]; density [kg/m^3] at ``density_temperature``
-    [degC] with ``density_slope`` [kg/(m^3 K)]; Barus ``pressure_viscosity`` [1/MPa]; limiting
+    [degC] with ``density_slope`` [kg/(m^3 K)]; Barus ``pressure_viscosity`` [1/MPa] and the
+    ``pressure_viscosity_model`` of the traction ('barus' or 'roelands'); limiting
     shear stress ``tau_L = limiting_shear_stress_0 + limiting_shear_coefficient p`` [MPa]; the
-    elastic ``shear_modulus`` of the film [MPa] (Maxwell traction at low slip).
+    elastic ``shear_modulus`` of the film [MPa] (Maxwell traction at low slip); the film's
+    ``thermal_conductivity`` [W/(m K)] (shear heating, :mod:`sim.friction`).
     """
 
     name: str
@@ -39,14 +41,17 @@ class Lubricant:
     density_ref: float
     density_slope: float
     pressure_viscosity: float
+    pressure_viscosity_model: str
     limiting_shear_stress_0: float
     limiting_shear_coefficient: float
     shear_modulus: float
+    thermal_conductivity: float
 
     @classmethod
     def from_config(cls, lub):
         for key in ("name", "temperature", "viscosity", "density", "density_temperature", "density_slope",
-                    "pressure_viscosity", "limiting_shear_coefficient", "limiting_shear_stress_0", "shear_modulus"):
+                    "pressure_viscosity", "pressure_viscosity_model", "limiting_shear_coefficient", "limiting_shear_stress_0", "shear_modulus",
+                    "thermal_conductivity"):
             if key not in lub:
                 raise InputError(f"lubricant.{key} is missing")
         try:
@@ -85,6 +90,9 @@ class Lubricant:
         alpha_p = float(lub["pressure_viscosity"])
         if not 0.0 <= alpha_p <= 0.1:
             raise InputError(f"lubricant.pressure_viscosity = {alpha_p!r} is outside the allowed range [0, 0.1] 1/MPa")
+        pv_model = str(lub["pressure_viscosity_model"])
+        if pv_model not in ("barus", "roelands"):
+            raise InputError(f"lubricant.pressure_viscosity_model = {pv_model!r} is not one of ['barus', 'roelands']")
         rho = float(lub["density"])
         if not 500.0 <= rho <= 1500.0:
             raise InputError(f"lubricant.density = {rho!r} is outside the allowed range [500, 1500] kg/m^3")
@@ -100,7 +108,10 @@ class Lubricant:
         G = float(lub["shear_modulus"])
         if not 10.0 <= G <= 1e5:
             raise InputError(f"lubricant.shear_modulus = {G!r} is outside the allowed range [10, 1e5] MPa")
-        return cls(str(lub["name"]), A, B, float(lub["density_temperature"]), rho, ds, alpha_p, t0, c, G)
+        k = float(lub["thermal_conductivity"])
+        if not 0.01 <= k <= 1.0:
+            raise InputError(f"lubricant.thermal_conductivity = {k!r} is outside the allowed range [0.01, 1] W/(m K)")
+        return cls(str(lub["name"]), A, B, float(lub["density_temperature"]), rho, ds, alpha_p, pv_model, t0, c, G, k)
 
     def kinematic_viscosity(self, temperature):
         """nu [mm^2/s] at ``temperature`` [degC] (Ubbelohde-Walther, DIN 51563)."""
@@ -114,3 +125,16 @@ class Lubricant:
     def dynamic_viscosity(self, temperature):
         """eta0 [Pa s] = nu rho at ambient pressure and ``temperature`` [degC]."""
         return self.kinematic_viscosity(temperature) * 1e-6 * self.density(temperature)
+
+    def temperature_viscosity_coefficient(self, temperature):
+        """beta = -d ln(eta0)/dT [1/K] at ``temperature`` [degC]: the local exponential
+        (Reynolds) slope of the Ubbelohde-Walther line and the density law.
+
+        With w = A - B log10(T_K) and nu + 0.7 = 10^(10^w):
+        d nu/dT = -(nu + 0.7) ln(10) 10^w B / T_K, and d ln(eta0)/dT = (d nu/dT)/nu + (d rho/dT)/rho.
+        """
+        T_K = np.asarray(temperature, dtype=float) + ZERO_CELSIUS
+        nu = self.kinematic_viscosity(temperature)
+        w = self.A - self.B * np.log10(T_K)
+        dnu = -(nu + WALTHER_SHIFT) * np.log(10.0) * 10.0 ** w * self.B / T_K
+        return -(dnu / nu + self.density_slope / self.density(temperature))

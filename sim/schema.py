@@ -172,6 +172,8 @@ class MaterialConfig:
     nu: Any = key(Number(0.0, 0.5, high_open=True))
     density: Any = key(Number(0.0, low_open=True, units="kg/m^3"))
     slice_stiffness_iso16281: Any = key(Number(0.0, low_open=True, units="N/mm^(10/9)"))
+    thermal_conductivity: Any = key(Number(1.0, 500.0, units="W/(m K)"))
+    specific_heat: Any = key(Number(100.0, 5000.0, units="J/(kg K)"))
 
 
 @dataclass
@@ -186,9 +188,11 @@ class LubricantConfig:
     density: Any = key(Number(500.0, 1500.0, units="kg/m^3"))
     density_slope: Any = key(Number(-10.0, 0.0, units="kg/(m^3 K)"))
     pressure_viscosity: Any = key(Number(0.0, 0.1, units="1/MPa"))
+    pressure_viscosity_model: str = key(Choice(("barus", "roelands")))
     limiting_shear_coefficient: Any = key(Number(0.0, 0.5, low_open=True))
     limiting_shear_stress_0: Any = key(Number(0.0, 100.0, units="MPa"))
     shear_modulus: Any = key(Number(10.0, 1e5, units="MPa"))
+    thermal_conductivity: Any = key(Number(0.01, 1.0, units="W/(m K)"))
 
 
 @dataclass
@@ -211,6 +215,8 @@ class FrictionConfig:
     cage_friction_coefficient: Any = key(Number(0.0, 1.0))
     film_thickness: str = key(Choice(("dowson_higginson", "pan_hamrock")))
     width_points: Any = key(Number(2, 64, integer=True))
+    thermal: bool = key(Flag())
+    temperature_tolerance: Any = key(Number(0.0, 10.0, low_open=True, units="K"))
     kinematics: str = key(Choice(("rolling", "traction")))
     max_iterations: Any = key(Number(1, 10000, integer=True))
     tolerance: Any = key(Number(1e-14, 1e-2, low_open=True))

@@ -2,6 +2,8 @@
 
 MODEL.md 5 and issue "Simulation core II". Loads in N, speeds in rpm, torque in N mm.
 """
+import functools
+
 import numpy as np
 import pytest
 
@@ -24,6 +26,7 @@ def share(case, component):
 ENERGY_CASES = [
     ("trb_32208", ["load.Fr=0"]),
     ("trb_32208", ["load.Fa=40000", "load.Fr=0"]),
+    ("trb_32208", ["load.Fa=40000", "load.Fr=0", "friction.thermal=false", "lubricant.pressure_viscosity_model=barus"]),
     ("trb_32208", ["load.Fr=4000"]),
     ("tsrb_reference", ["load.Fr=0"]),
     ("tsrb_reference", ["load.Fr=4000", "load.tilt=0.02"]),
@@ -113,22 +116,61 @@ def test_drilling_is_the_largest_raceway_loss_of_the_tsrb(Fa, Fr):
     assert max(raceway, key=raceway.get) == "drilling"
 
 
-VARIANTS = {   # thesis Table 7.2
+def test_shear_heating_lowers_the_rib_friction_where_the_rib_heats():
+    """The TRB's roller-end / rib contact slides at about 1 m/s. At Fa = 40 kN its heat
+    (~10 MW/m^2) warms the film by tens of K and the film's viscosity falls several-fold: the
+    rib friction with shear heating is well below the isothermal one (we measure -53 %;
+    asserted: below 80 %). At 4.5 kN the rib carries a tenth of the load and the heat is small
+    (the rib friction changes by less than 15 %). The raceway rolling resistance, an inlet
+    effect, sees the heating only through the slightly changed roller speeds (measured 6e-6;
+    asserted 1e-4)."""
+    def rib_and_rolling(Fa, thermal):
+        case = run("trb_32208", f"load.Fa={Fa}", "load.Fr=0", f"friction.thermal={thermal}")
+        return [float(case.torque_component.sel(component=c)) for c in ("rib", "rolling")]
+
+    hot, cold = rib_and_rolling(40000, "true"), rib_and_rolling(40000, "false")
+    assert hot[0] < 0.8 * cold[0]
+    assert hot[1] == pytest.approx(cold[1], rel=1e-4)
+    hot, cold = rib_and_rolling(4500, "true"), rib_and_rolling(4500, "false")
+    assert 0.85 * cold[0] < hot[0] <= cold[0]
+
+
+VARIANTS = {   # thesis Table 7.2, one parameter at a time from tsrb_reference
     "PCR_up": ["bearing.PCR=122.5"], "PCR_down": ["bearing.PCR=36"],
     "alpha_up": ["bearing.alpha=18", "bearing.ratings_alpha=18"],
     "alpha_down": ["bearing.alpha=10", "bearing.ratings_alpha=10"],
     "kappa_up": ["bearing.kappa=0.99"], "kappa_down": ["bearing.kappa=0.90"],
-    "aP_up": ["bearing.aP=10", "bearing.aPk=3.5"],
+    "aP_up": ["bearing.aP=10", "bearing.aPk=3.5"], "aP_down": ["bearing.aP=7", "bearing.aPk=5"],
+    "aPk_up": ["bearing.aPk=5.5"], "aPk_down": ["bearing.aPk=3"],
 }
-# thesis_data.yaml sensitivity_directions: +1 up, -1 down (aPk and two pmax entries: see README, known deviations)
+# thesis_data.yaml sensitivity_directions: +1 up, -1 down; 0: "small effect", |relative change| < 10 %
+# (every other parameter of Table 7.2 moves the torque by 20-33 % in the thesis and here)
 DIRECTIONS = {
-    "PCR_up": {"torque": -1, "axial_displacement": +1},
-    "PCR_down": {"torque": +1, "axial_displacement": -1},
-    "alpha_up": {"torque": -1, "contact_length_ratio": -1},
+    "PCR_up": {"torque": -1, "pmax": +1, "axial_displacement": +1},
+    "PCR_down": {"torque": +1, "pmax": -1, "axial_displacement": -1},
+    "alpha_up": {"torque": -1, "contact_length_ratio": -1, "C": -1},
     "alpha_down": {"torque": +1, "contact_length_ratio": +1},
-    "kappa_up": {"torque": +1, "contact_length_ratio": +1},
+    "kappa_up": {"torque": +1, "contact_length_ratio": +1, "pmax": -1},
     "kappa_down": {"torque": -1, "contact_length_ratio": -1, "pmax": +1},
-    "aP_up": {"axial_displacement": -1},
+    "aP_up": {"torque": 0, "pmax": 0, "axial_displacement": -1},
+    "aP_down": {"torque": 0, "pmax": 0, "axial_displacement": +1},
+    "aPk_up": {"torque": -1, "pmax": +1},
+    "aPk_down": {"torque": +1, "pmax": -1, "axial_displacement": -1},
+}
+SCENARIOS = {"pure axial": (4000, 0), "combined": (4000, 4000)}   # thesis Fig. 7.6 scenarios (4,0) and (4,4) kN
+APK_REASON = ("aPk measured from the small end (MODEL.md 4): a bigger aPk moves both contact points towards the "
+              "large end, past the load centroid PCR sin(gamma), so the roller needs less axial travel and its "
+              "contacts less crown; the thesis's directions need the opposite")
+# Directions our model does not reproduce (README, known deviations). Strict: the day one of them
+# comes out as the thesis says, the test fails and this table must be updated.
+DEVIATIONS = {
+    ("PCR_down", "pmax"): "PCR 36 (aA <= 0): pmax +11 to +12 % here, with a contact 20 % shorter under the same load",
+    ("kappa_up", "pmax", "combined"): "kappa 0.99: pmax +5 % here under combined load (pure axial: -3 %, as the thesis)",
+    ("aPk_up", "torque"): APK_REASON,
+    ("aPk_up", "pmax", "pure axial"): APK_REASON,
+    ("aPk_down", "torque"): APK_REASON,
+    ("aPk_down", "pmax"): APK_REASON,
+    ("aPk_down", "axial_displacement"): APK_REASON,
 }
 
 
@@ -139,20 +181,38 @@ def quantity(case, name):
     return float(value)
 
 
-@pytest.mark.parametrize("Fa,Fr", [(4000, 0), (4000, 4000)])
-def test_sensitivity_directions_of_thesis_7_2(Fa, Fr):
-    """Every direction of thesis 7.2 that our model reproduces, one parameter at a time from
-    tsrb_reference, on two load scenarios of Fig. 7.6 (pure axial and combined)."""
-    load = [f"load.Fa={Fa}", f"load.Fr={Fr}"]
-    base = run("tsrb_reference", *load)
-    for variant, overrides in VARIANTS.items():
-        case = run("tsrb_reference", *load, *overrides)
-        for name, sign in DIRECTIONS[variant].items():
-            change = quantity(case, name) - quantity(base, name)
-            assert np.sign(change) == sign, f"{variant}: {name} changed by {change:+.4g}, thesis says {sign:+d}"
-    # alpha up: about -25 % torque in the thesis; accept -10 to -40 % (one model against another)
-    alpha_up = run("tsrb_reference", *load, *VARIANTS["alpha_up"])
-    assert -0.40 < float(alpha_up.torque) / float(base.torque) - 1.0 < -0.10
+@functools.lru_cache(maxsize=None)
+def sensitivity_case(scenario, variant):
+    Fa, Fr = SCENARIOS[scenario]
+    return run("tsrb_reference", f"load.Fa={Fa}", f"load.Fr={Fr}", *VARIANTS.get(variant, []))
+
+
+def _direction_params():
+    for scenario in SCENARIOS:
+        for variant, directions in DIRECTIONS.items():
+            for name, sign in directions.items():
+                reason = DEVIATIONS.get((variant, name), DEVIATIONS.get((variant, name, scenario)))
+                marks = [pytest.mark.xfail(strict=True, reason=reason)] if reason else []
+                yield pytest.param(scenario, variant, name, sign, marks=marks, id=f"{scenario}-{variant}-{name}")
+
+
+@pytest.mark.parametrize("scenario,variant,name,sign", list(_direction_params()))
+def test_sensitivity_direction_of_thesis_7_2(scenario, variant, name, sign):
+    """Every direction of thesis 7.2 (thesis_data.yaml sensitivity_directions), one parameter at
+    a time from tsrb_reference, on two load scenarios of Fig. 7.6 (pure axial and combined)."""
+    base = sensitivity_case(scenario, "reference")
+    change = quantity(sensitivity_case(scenario, variant), name) / quantity(base, name) - 1.0
+    if sign == 0:
+        assert abs(change) < 0.10, f"{variant}: {name} changed by {change:+.3f}, thesis: small effect"
+    else:
+        assert np.sign(change) == sign, f"{variant}: {name} changed by {change:+.4f}, thesis says {sign:+d}"
+
+
+@pytest.mark.parametrize("scenario", list(SCENARIOS))
+def test_alpha_up_torque_reduction_of_thesis_7_2(scenario):
+    """alpha up: about -25 % torque in the thesis; accept -10 to -40 % (one model against another)."""
+    change = float(sensitivity_case(scenario, "alpha_up").torque) / float(sensitivity_case(scenario, "reference").torque)
+    assert -0.40 < change - 1.0 < -0.10
 
 
 def test_cage_pocket_friction_enters_the_load_distribution():
