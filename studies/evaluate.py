@@ -3,6 +3,7 @@
 A point that cannot be simulated is kept, never dropped: its ``status`` says why
 (impossible geometry, not converged, failed) and its results are NaN (DATA.md).
 """
+import datetime as _dt
 import time
 
 import numpy as np
@@ -167,6 +168,43 @@ def points_dataset(space, X, records, source, round_index, attrs):
     data["wall_time"] = ("design", np.array([r["wall_time"] for r in records]),
                          {"units": "s", "long_name": "simulation wall time"})
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+# On disk (training.nc) the per-point table follows DATA.md: results on (design, case) with the
+# study's one load case, and the race maximum of pmax under its own name (DATA.md's pmax is per race).
+RACE_MAXIMA = {"pmax": "pmax_both_races"}
+
+
+def table_to_file(ds, load):
+    """The per-point table ``ds`` (dim design) in its DATA.md form for training.nc.
+
+    Result variables (with units, i.e. not ``status``/``message``) get a ``case`` dim of length 1
+    with the load case coordinates of ``load`` (Fa, Fr [N], speed [rpm], tilt [deg],
+    oil_temperature [degC]); race maxima are renamed (RACE_MAXIMA); a ``created`` time is added.
+    """
+    out = ds.rename({k: v for k, v in RACE_MAXIMA.items() if k in ds})
+    for old, new in RACE_MAXIMA.items():
+        if new in out:
+            out[new].attrs["long_name"] = f"{out[new].attrs.get('long_name', old)}, maximum of both races"
+    case_vars = [v for v in out.data_vars if "units" in out[v].attrs]
+    out = out.assign({v: out[v].expand_dims("case", axis=1) for v in case_vars})
+    case_coords = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
+                   "tilt": ("deg", "inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
+    out = out.assign_coords({k: ("case", [float(load[k])], {"units": u, "long_name": ln})
+                             for k, (u, ln) in case_coords.items()})
+    out.attrs["created"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    return out
+
+
+def table_from_file(ds):
+    """Inverse of :func:`table_to_file`: the per-point table (dim design) the search works on."""
+    out = ds.drop_vars(["Fa", "Fr", "speed", "tilt", "oil_temperature"]).squeeze("case", drop=True)
+    out = out.rename({v: k for k, v in RACE_MAXIMA.items() if v in out})
+    for old in RACE_MAXIMA:
+        if old in out:
+            out[old].attrs["long_name"] = out[old].attrs["long_name"].removesuffix(", maximum of both races")
+    out.attrs.pop("created", None)
+    return out
 
 
 def design_matrix(ds, space):

@@ -25,7 +25,7 @@ from sim.io import write_netcdf_atomic
 from studies.config import StudyConfigError, output_dir, simulation_config, storage_spec
 from studies.constraints import FAILED, Limits, margins, rank_key
 from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, design_matrix, evaluate_design, evaluate_designs,
-                              points_dataset, simulate_point)
+                              points_dataset, simulate_point, table_from_file, table_to_file)
 from studies.search import (complete_trials, finished_study, make_sampler, make_storage, open_study, persist_study,
                             run_trials)
 from studies.space import DesignSpace
@@ -128,7 +128,7 @@ class DesignSearch:
         """The training data on disk (None if none); refuses data of another configuration."""
         if not self.training_path.exists():
             return None
-        ds = xr.load_dataset(self.training_path)
+        ds = table_from_file(xr.load_dataset(self.training_path))
         want = self.attrs()
         for key in ("study_config", "simulation_config"):
             if ds.attrs.get(key) != want[key]:
@@ -137,7 +137,7 @@ class DesignSearch:
         return ds
 
     def save_training(self, ds):
-        write_netcdf_atomic(ds, self.training_path)
+        write_netcdf_atomic(table_to_file(ds, self.base_cfg.load), self.training_path)
 
     def simulate(self, X, source, round_index):
         """Full simulations of the rows of X -> points dataset."""

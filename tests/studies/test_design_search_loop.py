@@ -4,6 +4,10 @@ The simulation runs for real (pinion study, 10 slices, friction off, objective p
 the test does not depend on the friction model): 8 Sobol points, then rounds of 25 surrogate
 trials verifying 2 candidates each, up to 12 full simulations.
 """
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import optuna
 import pytest
@@ -11,7 +15,7 @@ import xarray as xr
 
 from studies.config import compose
 from studies.constraints import FAILED
-from studies.evaluate import STATUS
+from studies.evaluate import STATUS, table_from_file
 from studies.loop import DesignSearch
 from studies.report import write_report
 from studies.search import make_sampler, open_study, run_trials
@@ -65,6 +69,23 @@ def test_report_writes_verified_results_and_plots(finished):
     best = xr.load_dataset(search.out / "best_design.nc")
     assert float(best.PCR.values[0]) == pytest.approx(float(ds.PCR.values[i]))
     assert "reference TRB trb_31313" in text and "thesis design tsrb_pinion" in text and "| pmax |" in text
+
+
+CHECKER = Path(__file__).resolve().parents[2].parent / "shared" / "tools" / "check_result.py"
+
+
+def test_every_file_of_the_search_follows_the_results_contract(finished):
+    """training.nc, verified.nc and best_design.nc pass the DATA.md checker (when ../shared is
+    there); training.nc reads back as the table the search works on, value for value."""
+    search, ds, reason = finished
+    write_report(search, ds, reason)
+    if CHECKER.exists():
+        for name in ("training.nc", "verified.nc", "best_design.nc"):
+            chk = subprocess.run([sys.executable, str(CHECKER), str(search.out / name)], capture_output=True, text=True)
+            assert chk.returncode == 0, chk.stdout
+    disk = xr.load_dataset(search.out / "training.nc")
+    assert disk.pmax_both_races.dims == ("design", "case") and "pmax" not in disk
+    xr.testing.assert_identical(table_from_file(disk), ds)
 
 
 def test_interrupted_search_resumes_to_the_uninterrupted_result(finished, tmp_path):
