@@ -22,6 +22,11 @@ n (into the ring) and rolling tangent a = n x e_t:
   its power is (F_h + F_y) times the rolling speed. (5.18) in this form: the solid rolling
   share Phi M_T,S,r is the micro-slip of the asperity contacts, which the width integration of
   the Phi-weighted solid traction resolves explicitly; it has no separate coefficient.
+- film viscosity in the traction: per contact, the ambient viscosity lowered by the contact's
+  own shear heating (:func:`_viscosity_factor`: flash + mid-film temperature, solved
+  self-consistently at the speeds of the previous kinematic pass, like the film thickness),
+  then raised to the local pressure (Barus or Roelands) at every width point; both are fixed
+  while the roller and cage speeds are solved.
 - TRB roller end / rib: point contact, sliding along e_t, traction (5.17) at the Hertz mean
   pressure with the rib's own roughness and B_ZH, C_ZH; its rolling resistance and spin are
   neglected (sliding dominated, thesis 5.5.1).
@@ -192,7 +197,7 @@ def _viscosity_factor(p0k, bk, hk, phik, st, ws, half_length, U1, U2, par, tq, w
 
 @kernel
 def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, w, E_star, rib, par, tq, wq,
-                      h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Th, Thrib):
+                      h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Eta, Etarib):
     """Film, solid load share, rolling resistance forces, Hertz data and thermal viscosity factor
     of every loaded contact, at the speeds wR, wc.
 
@@ -208,11 +213,15 @@ def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, 
         Radii of relative curvature [mm]. w: slice width [mm]. E_star: contact modulus [MPa].
     par : ndarray (NPAR,)
         Friction parameters (module constants PAR_*). tq, wq: width quadrature nodes and weights.
-    h, Phi, Fh, Fy, p0, b, Th : ndarray (Z, 2, N)
+    h, Phi, Fh, Fy, p0, b : ndarray (Z, 2, N)
         Film [mm], solid load share [1], hydrodynamic and hysteresis rolling forces [N],
-        Hertz pressure [MPa], half-width [mm] and viscosity factor [1] (written; 0 where unloaded).
-    hrib, Phirib, prib, Thrib : ndarray (Z,)
-        Rib film [mm], load share [1], Hertz mean pressure [MPa] and viscosity factor [1] (written).
+        Hertz pressure [MPa] and half-width [mm] (written; 0 where unloaded).
+    Eta : ndarray (Z, 2, N, len(tq))
+        Film viscosity at the pressure p0 cos(tq) of each width point, after the thermal
+        reduction [MPa s] (written where loaded): fixed while the kinematics are solved.
+    hrib, Phirib, prib, Etarib : ndarray (Z,)
+        Rib film [mm], load share [1], Hertz mean pressure [MPa] and film viscosity at that
+        pressure [MPa s] (written).
     """
     Z = q.shape[0]
     n = q.shape[2]
@@ -235,7 +244,6 @@ def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, 
                     Fy[j, s, k] = 0.0
                     p0[j, s, k] = 0.0
                     b[j, s, k] = 0.0
-                    Th[j, s, k] = 1.0
                     continue
                 v1, v2 = _surface_speeds(wR[j], Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
                 u = 0.5 * abs(v1 + v2)
@@ -249,12 +257,14 @@ def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, 
                 p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
                 Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par[PAR_HYST])
                 ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
-                Th[j, s, k] = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], v1 - v2, ws, bk, v1, v2, par,
-                                                tq, wq)
+                theta = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], v1 - v2, ws, bk, v1, v2, par, tq, wq)
+                for i in range(tq.shape[0]):
+                    Eta[j, s, k, i] = pressure_viscosity(p0[j, s, k] * np.cos(tq[i]), par[PAR_ETA0] * theta,
+                                                         par[PAR_ALPHA], par[PAR_Z], int(par[PAR_PV_MODEL]))
         hrib[j] = 0.0
         Phirib[j] = 0.0
         prib[j] = 0.0
-        Thrib[j] = 1.0
+        Etarib[j] = 0.0
         if Qrib[j] > 0.0:
             v1, v2 = _surface_speeds(wR[j], wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
             u = 0.5 * abs(v1 + v2)
@@ -264,7 +274,9 @@ def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, 
             prib[j] = Qrib[j] / (np.pi * a * a)
             hrib[j] = film_point(u, Qrib[j], R_end, R_end, par[PAR_ETA0], par[PAR_ALPHA], Ep)
             Phirib[j] = solid_load_share(hrib[j], par[PAR_SIGMA_RIB], par[PAR_B_RIB], par[PAR_C_RIB])
-            Thrib[j] = _viscosity_factor(prib[j], 0.0, hrib[j], Phirib[j], v1 - v2, 0.0, a, v1, v2, par, tq, wq)
+            theta = _viscosity_factor(prib[j], 0.0, hrib[j], Phirib[j], v1 - v2, 0.0, a, v1, v2, par, tq, wq)
+            Etarib[j] = pressure_viscosity(prib[j], par[PAR_ETA0] * theta, par[PAR_ALPHA], par[PAR_Z],
+                                           int(par[PAR_PV_MODEL]))
 
 
 @kernel
@@ -272,7 +284,7 @@ def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, e
                     outer):
     """Add one slice's friction to the roller evaluation vector ``ev`` (module docstring).
 
-    ``eta``: ambient viscosity of the film after its thermal reduction [MPa s]. Returns the
+    ``eta`` (len(tq),): film viscosity at the pressure of each width point [MPa s]. Returns the
     tangential force F_t [N], the sliding speed s [mm/s] and the rolling-resistance power
     [N mm/s]; the caller splits -F_t s into sliding and drilling.
     """
@@ -292,8 +304,7 @@ def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, e
         p = p0k * ct
         vy = y * ws
         v = np.sqrt(st * st + vy * vy)
-        eta_p = pressure_viscosity(p, eta, par[PAR_ALPHA], par[PAR_Z], int(par[PAR_PV_MODEL]))
-        g = traction_per_speed(p, v, hk, phik, eta_p, par[PAR_TAU0], par[PAR_CTAU], par[PAR_MU_S], par[PAR_V_S],
+        g = traction_per_speed(p, v, hk, phik, eta[i], par[PAR_TAU0], par[PAR_CTAU], par[PAR_MU_S], par[PAR_V_S],
                                par[PAR_G], t_transit)
         dA = 2.0 * w * bk * ct * wq[i]
         Ft -= g * st * dA
@@ -314,7 +325,7 @@ def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, e
 
 @kernel
 def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, Th, Thrib, par, tq, wq, ev):
+                    Phirib, Eta, Etarib, par, tq, wq, ev):
     """Friction of roller j at roller speed wR and cage speed wc [rad/s]: fills ``ev`` (NEV,).
 
     ev: moment about the roller axis [N mm], z-moment of the contacts on the roller [N mm],
@@ -340,7 +351,7 @@ def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, F
             frr = Fh[j, s, k] + Fy[j, s, k]
             Ft, st, prr = _slice_friction(wR, Om, X[j, s, k, 0], X[j, s, k, 1], Nrm[j, s, k, 0], Nrm[j, s, k, 1],
                                           cr, cz, ur, uz, p0[j, s, k], b[j, s, k], h[j, s, k], Phi[j, s, k],
-                                          par[PAR_ETA0] * Th[j, s, k], frr,
+                                          Eta[j, s, k], frr,
                                           R_eq[s, k], w, par, tq, wq, ev, s == 0)
             F_sum += Ft
             P_slip -= Ft * st
@@ -359,9 +370,7 @@ def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, F
         st = v1 - v2
         a_rib = np.sqrt(Qrib[j] / (np.pi * prib[j]))               # Hertz radius [mm]
         t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), 1e-300)
-        eta_p = pressure_viscosity(prib[j], par[PAR_ETA0] * Thrib[j], par[PAR_ALPHA], par[PAR_Z],
-                                   int(par[PAR_PV_MODEL]))
-        g = traction_per_speed(prib[j], abs(st), hrib[j], Phirib[j], eta_p, par[PAR_TAU0], par[PAR_CTAU],
+        g = traction_per_speed(prib[j], abs(st), hrib[j], Phirib[j], Etarib[j], par[PAR_TAU0], par[PAR_CTAU],
                                par[PAR_MU_S], par[PAR_V_S], par[PAR_G], t_transit)
         F = -g * st * Qrib[j] / prib[j]
         ev[EV_MU] += F * (uz * (Xrib[j, 0] - cr) - ur * (Xrib[j, 1] - cz))
@@ -407,7 +416,7 @@ def _illinois(lo, hi, flo, fhi, x, fx, side):
 
 @kernel
 def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter):
+                        Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter):
     """omega_R of roller j with zero moment about its axis (bracketing + Illinois regula falsi).
 
     Returns (omega_R [rad/s], converged). M(omega_R) falls with omega_R: more spin, more drag.
@@ -415,17 +424,17 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
     lo = 0.9 * w0
     hi = 1.1 * w0
     roller_friction(j, lo, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, Th, Thrib, par, tq, wq, ev)
+                    Phirib, Eta, Etarib, par, tq, wq, ev)
     flo = ev[EV_MU]
     roller_friction(j, hi, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, Th, Thrib, par, tq, wq, ev)
+                    Phirib, Eta, Etarib, par, tq, wq, ev)
     fhi = ev[EV_MU]
     for grow in range(max_iter):
         if flo * fhi <= 0.0:
             break
         lo, hi, flo, fhi, x, x_is_hi = _widen(lo, hi, flo, fhi)
         roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Th, Thrib, par, tq, wq, ev)
+                        Phirib, Eta, Etarib, par, tq, wq, ev)
         if x_is_hi:
             fhi = ev[EV_MU]
         else:
@@ -437,7 +446,7 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
     for it in range(max_iter):
         x = hi - fhi * (hi - lo) / (fhi - flo)
         roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Th, Thrib, par, tq, wq, ev)
+                        Phirib, Eta, Etarib, par, tq, wq, ev)
         fx = ev[EV_MU]
         if abs(fx) <= tol_M:
             return x, True
@@ -447,7 +456,7 @@ def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Ph
 
 @kernel
 def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib,
-                 hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals):
+                 hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals):
     """Sum of the z-moments on all rollers at cage speed wc, each roller at its own moment balance.
 
     wR (Z,) holds start values in and solved speeds out; ``totals`` (NEV,) gets the weighted
@@ -460,11 +469,11 @@ def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b,
         if not active[j]:
             continue
         wj, conv = _solve_roller_speed(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                       R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter)
+                                       R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter)
         ok = ok and conv
         wR[j] = wj
         roller_friction(j, wj, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Th, Thrib, par, tq, wq, ev)
+                        Phirib, Eta, Etarib, par, tq, wq, ev)
         for i in range(NEV):
             totals[i] += weight[j] * ev[i]
     return totals[EV_TZ], ok
@@ -472,7 +481,7 @@ def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b,
 
 @kernel
 def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                     prib, hrib, Phirib, Th, Thrib, par, tq, wq, tol_M, tol_T, max_iter, totals):
+                     prib, hrib, Phirib, Eta, Etarib, par, tq, wq, tol_M, tol_T, max_iter, totals):
     """Cage speed with zero z-moment on the cage and roller speeds with zero spin moment.
 
     Parameters
@@ -498,15 +507,15 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
     lo = 0.95 * wc0
     hi = 1.05 * wc0
     flo, ok = _cage_moment(lo, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                            w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
+                            w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
     fhi, ok = _cage_moment(hi, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                            w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
+                            w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
     for grow in range(max_iter):
         if flo * fhi <= 0.0:
             break
         lo, hi, flo, fhi, x, x_is_hi = _widen(lo, hi, flo, fhi)
         fx, ok = _cage_moment(x, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                              w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
+                              w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
         if x_is_hi:
             fhi = fx
         else:
@@ -518,7 +527,7 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
     for it in range(max_iter):
         x = hi - fhi * (hi - lo) / (fhi - flo)
         fx, ok = _cage_moment(x, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                              w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter, totals)
+                              w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
         if abs(fx) <= tol_T:
             return x, ok
         lo, hi, flo, fhi, side = _illinois(lo, hi, flo, fhi, x, fx, side)
@@ -527,7 +536,7 @@ def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p
 
 @kernel
 def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                         prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M, T, totals):
+                         prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M, T, totals):
     """Roller spin moments M (Z,) and cage z-moments per roller T (Z,) [N mm] at (wR, wc); sums into totals."""
     for i in range(NEV):
         totals[i] = 0.0
@@ -537,7 +546,7 @@ def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib
         if not active[j]:
             continue
         roller_friction(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Th, Thrib, par, tq, wq, ev)
+                        Phirib, Eta, Etarib, par, tq, wq, ev)
         M[j] = ev[EV_MU]
         T[j] = weight[j] * ev[EV_TZ]
         for i in range(NEV):
@@ -546,7 +555,7 @@ def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib
 
 @kernel
 def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh,
-                            Fy, R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, tol_M, tol_T, max_iter, totals):
+                            Fy, R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, tol_M, tol_T, max_iter, totals):
     """Newton on all roller speeds and the cage speed together (arrow-shaped Jacobian).
 
     Roller j's spin moment depends on its own speed and the cage speed only, so the Jacobian
@@ -575,9 +584,9 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
     for j in range(Z):
         if presolve and active[j]:
             wR[j], conv = _solve_roller_speed(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                              R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, tol_M, max_iter)
+                                              R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter)
     _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                         prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M, T, totals)
+                         prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M, T, totals)
     for it in range(max_iter):
         norm = (T.sum() / tol_T) ** 2
         worst = abs(T.sum()) / tol_T
@@ -589,7 +598,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
         # Jacobian by forward differences
         hc = 1e-7 * abs(wc)
         _kinematic_residuals(wc + hc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                             R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M2, T2, tmp)
+                             R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M2, T2, tmp)
         for j in range(Z):
             dMdc[j] = (M2[j] - M[j]) / hc
             dTdc[j] = (T2[j] - T[j]) / hc
@@ -601,7 +610,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
             hj = 1e-7 * abs(wR[j])
             wtrial[j] = wR[j] + hj
             roller_friction(j, wtrial[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                            prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev)
+                            prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev)
             wtrial[j] = wR[j]
             dMdw[j] = (ev[EV_MU] - M[j]) / hj
             dTdw[j] = (weight[j] * ev[EV_TZ] - T[j]) / hj
@@ -623,7 +632,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
             for j in range(Z):
                 wtrial[j] = wR[j] + step * dw[j]
             _kinematic_residuals(wc + step * dc, wi, wtrial, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h,
-                                 Phi, Fh, Fy, R_eq, w, prib, hrib, Phirib, Th, Thrib, par, tq, wq, ev, M2, T2, tmp)
+                                 Phi, Fh, Fy, R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M2, T2, tmp)
             trial = (T2.sum() / tol_T) ** 2
             for j in range(Z):
                 trial += (M2[j] / tol_M) ** 2
@@ -780,8 +789,8 @@ class FrictionModel:
             weight[1:(Z + 1) // 2] = 2.0
         shape = (Z, 2, n)
         h, Phi, Fh, Fy, p0, b = (np.zeros(shape) for _ in range(6))
-        Th = np.ones(shape)
-        hrib, Phirib, prib, Thrib = np.zeros(Z), np.zeros(Z), np.zeros(Z), np.ones(Z)
+        Eta = np.zeros(shape + (self.tq.shape[0],))
+        hrib, Phirib, prib, Etarib = np.zeros(Z), np.zeros(Z), np.zeros(Z), np.zeros(Z)
         totals = np.zeros(NEV)
         ev = np.zeros(NEV)
         mu_ref = max(par[PAR_MU_S], par[PAR_CTAU])
@@ -792,10 +801,10 @@ class FrictionModel:
         passes = 2 if self.traction_kinematics and start is None else 1
         for film_pass in range(passes):
             lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, a["R_eq"], g.slice_width, self.E_star,
-                              a["rib"], par, self.tq, self.wq, h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Th, Thrib)
+                              a["rib"], par, self.tq, self.wq, h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Eta, Etarib)
             if self.traction_kinematics:
                 args = (wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
-                        g.slice_width, prib, hrib, Phirib, Th, Thrib, par, self.tq, self.wq, tol_M, tol_T, self.max_iterations,
+                        g.slice_width, prib, hrib, Phirib, Eta, Etarib, par, self.tq, self.wq, tol_M, tol_T, self.max_iterations,
                         totals)
                 start_c, start_R = wc, wR.copy()
                 wc, converged = solve_kinematics_newton(wc, film_pass == 0 and start is None, *args)
@@ -805,14 +814,14 @@ class FrictionModel:
         if not self.traction_kinematics:
             for j in np.flatnonzero(active):
                 roller_friction(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
-                                g.slice_width, prib, hrib, Phirib, Th, Thrib, par, self.tq, self.wq, ev)
+                                g.slice_width, prib, hrib, Phirib, Eta, Etarib, par, self.tq, self.wq, ev)
                 totals += weight[j] * ev
         # cage pocket friction on each roller, force along v' (module docstring): the friction
         # load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
         roller_loads = np.zeros((Z, 3))
         for jj in np.flatnonzero(active):
             roller_friction(jj, wR[jj], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
-                            g.slice_width, prib, hrib, Phirib, Th, Thrib, par, self.tq, self.wq, ev)
+                            g.slice_width, prib, hrib, Phirib, Eta, Etarib, par, self.tq, self.wq, ev)
             F_cage = par[PAR_DRAG_K] * wc * wc - ev[EV_FT]
             roller_loads[jj, 1] = par[PAR_MU_CAGE] * F_cage * np.sign(wR[jj])
         if symmetric:
