@@ -689,6 +689,8 @@ class FrictionModel:
         self.wq = 0.25 * np.pi * wt
         self.tolerance = _check_range("friction.tolerance", friction["tolerance"], 1e-14, 1e-2, low_open=True)
         self.max_iterations = int(_check_range("friction.max_iterations", friction["max_iterations"], 1, 10000))
+        self.seed_tolerance_factor = _check_range("friction.seed_tolerance_factor", friction["seed_tolerance_factor"],
+                                                  1.0, 1e4)
         drag = friction["drag"]
         model = str(drag["model"])
         if model not in ("none", "roller_drag"):
@@ -803,9 +805,11 @@ class FrictionModel:
             lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, a["R_eq"], g.slice_width, self.E_star,
                               a["rib"], par, self.tq, self.wq, h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Eta, Etarib)
             if self.traction_kinematics:
+                # a pass followed by another only sets the film of the next: looser tolerance
+                loose = self.seed_tolerance_factor if film_pass < passes - 1 else 1.0
                 args = (wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, a["R_eq"],
-                        g.slice_width, prib, hrib, Phirib, Eta, Etarib, par, self.tq, self.wq, tol_M, tol_T, self.max_iterations,
-                        totals)
+                        g.slice_width, prib, hrib, Phirib, Eta, Etarib, par, self.tq, self.wq, loose * tol_M,
+                        loose * tol_T, self.max_iterations, totals)
                 start_c, start_R = wc, wR.copy()
                 wc, converged = solve_kinematics_newton(wc, film_pass == 0 and start is None, *args)
                 if not converged:   # bracketing is slower but cannot leave the bracket

@@ -220,6 +220,7 @@ class FrictionConfig:
     kinematics: str = key(Choice(("rolling", "traction")))
     max_iterations: Any = key(Number(1, 10000, integer=True))
     tolerance: Any = key(Number(1e-14, 1e-2, low_open=True))
+    seed_tolerance_factor: Any = key(Number(1.0, 1e4))
     drag: DragConfig = field(default_factory=DragConfig)
 
 
