@@ -613,6 +613,12 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
     auxtmp = np.empty(NAUX)
     qtmp = np.empty_like(q)
     acttmp = np.empty_like(active)
+
+    def try_step(t):
+        """Contact state of the pose a step t along p (into the *tmp arrays and trial, ring_t)."""
+        _trial_pose(pose, t, p, trial, ring, ring_t, lc, q, active, qtmp, acttmp)
+        return _roller_state(trial, ring_t, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
+                             mode, k_line, rib, has_rib, qtmp, acttmp, 1e-13, ftmp, Ktmp, Qtmp, Gtmp, auxtmp)
     evals = 1
     ok = _roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
                        mode, k_line, rib, has_rib, q, active, 1e-13, f, K, Qout, Gout, aux)
@@ -683,10 +689,7 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
         ok_t = ok
         if slope > 0.0:
             for ls in range(nbt + 1):
-                _trial_pose(pose, t, p, trial, ring, ring_t, lc, q, active, qtmp, acttmp)
-                ok_t = _roller_state(trial, ring_t, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C,
-                                     E_star, mode, k_line, rib, has_rib, qtmp, acttmp, 1e-13, ftmp, Ktmp, Qtmp, Gtmp,
-                                     auxtmp)
+                ok_t = try_step(t)
                 evals += 1
                 if Qtmp[3] <= 0.0:
                     if not lc:
@@ -718,10 +721,7 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
                     slope += R[a] * p[a]
                 if slope <= 0.0:
                     continue
-                _trial_pose(pose, t, p, trial, ring, ring_t, lc, q, active, qtmp, acttmp)
-                ok_t = _roller_state(trial, ring_t, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C,
-                                     E_star, mode, k_line, rib, has_rib, qtmp, acttmp, 1e-13, ftmp, Ktmp, Qtmp, Gtmp,
-                                     auxtmp)
+                ok_t = try_step(t)
                 evals += 1
                 if Qtmp[3] <= 0.0:
                     if not lc:
@@ -745,9 +745,7 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
                 Rb[a] = Rt[a]
             while 2.0 * t * travel <= Lscale:
                 t_try = 2.0 * t_best
-                _trial_pose(pose, t_try, p, trial, ring, ring_t, lc, q, active, qtmp, acttmp)
-                _roller_state(trial, ring_t, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C,
-                              E_star, mode, k_line, rib, has_rib, qtmp, acttmp, 1e-13, ftmp, Ktmp, Qtmp, Gtmp, auxtmp)
+                try_step(t_try)
                 evals += 1
                 t = t_try
                 if Qtmp[3] <= 0.0:
@@ -762,10 +760,7 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
                     Rb[a] = Rt[a]
             if not free and t != t_best:
                 t = t_best
-                _trial_pose(pose, t, p, trial, ring, ring_t, lc, q, active, qtmp, acttmp)
-                ok_t = _roller_state(trial, ring_t, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C,
-                                     E_star, mode, k_line, rib, has_rib, qtmp, acttmp, 1e-13, ftmp, Ktmp, Qtmp, Gtmp,
-                                     auxtmp)
+                ok_t = try_step(t)
                 evals += 1
         pose[0] = trial[0]
         pose[1] = trial[1]
