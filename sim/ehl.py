@@ -158,7 +158,8 @@ def flash_temperature_rise(q, half_length, U1, U2, k_s, kappa_s):
     Each surface passes the band of length 2 half_length at its speed U_i; at high Peclet
     number (U l / (2 kappa) > 5, bearing contacts: 10-100) it heats as a semi-infinite solid
     under a constant flux for the time x/U_i: T(x) = 2 q_i sqrt(kappa x / (pi U_i)) / k
-    (Carslaw & Jaeger 1959, 2.9; Jaeger 1942), mean over the band 2/3 of the exit value. Blok's
+    (Carslaw & Jaeger 1959, semi-infinite solid under a constant surface flux; Jaeger 1942),
+    mean over the band 2/3 of the exit value. Blok's
     (1937) partition q_i ~ sqrt(U_i) makes both surfaces equally hot:
     T = (4/3) q sqrt(2 l kappa / pi) / (k (sqrt(U1) + sqrt(U2))).
 

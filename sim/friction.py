@@ -760,7 +760,7 @@ class FrictionModel:
         eta0 = self.lubricant.dynamic_viscosity(op.oil_temperature) * 1e-6      # MPa s
         par[PAR_ETA0] = eta0
         par[PAR_BETA] = float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature))
-        par[PAR_Z] = roelands_index(eta0, par[PAR_ALPHA]) if par[PAR_ALPHA] > 0.0 else 0.0
+        par[PAR_Z] = roelands_index(eta0, par[PAR_ALPHA])
         par[PAR_DRAG_K] = self.drag_factor * float(self.lubricant.density(op.oil_temperature))
         X = np.zeros((Z, 2, n, 2))
         Nrm = np.zeros((Z, 2, n, 2))

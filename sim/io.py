@@ -100,7 +100,12 @@ def _case_array(name, dims, results, sizes):
     return arr
 
 
-def _case_coords(ops):
+def utc_now():
+    """Creation time of a dataset, ISO 8601 in UTC to the second (DATA.md provenance)."""
+    return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+
+
+def case_coords(ops):
     """Case coordinates (DATA.md) of a list of sim.simulation.OperatingPoint."""
     attrs = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
              "tilt": ("deg", "imposed inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
@@ -140,7 +145,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
         "roller": ("roller", np.arange(g.Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
         "slice": ("slice", np.arange(g.n_slices), {"long_name": "slice index from the large end", "units": "1"}),
         "x_slice": ("slice", g.x_slice_from_large_end, {"units": "mm", "long_name": "slice centre from the large end"}),
-        **_case_coords(ops),
+        **case_coords(ops),
         "bearing_type": ("design", [g.type], {"long_name": "bearing type"}),
     }
     design_params = {"alpha": np.degrees(g.alpha), "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
@@ -159,7 +164,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
         "config": config_yaml,
         "solver": "quasi_static",
         "solver_settings": str(settings),
-        "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"),
+        "created": utc_now(),
         "sources": ("thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004; ZhouHoeprich1991; PanHamrock1989; "
                     "HamrockDowson1977; BairWiner1979; JohnsonTevaarwerk1977"),
     })
@@ -203,7 +208,7 @@ def failed_dataset(bearing, ops, config_yaml, message):
     It keeps the design's place in a sweep: case coordinates of ``ops``, the geometry inputs of
     the ``bearing`` config node as design coordinates (derived ones NaN), ``converged = False``.
     """
-    coords = dict(_case_coords(ops))
+    coords = dict(case_coords(ops))
     coords["bearing_type"] = ("design", [str(bearing.get("type"))], {"long_name": "bearing type"})
     for name, (units, long_name) in DESIGN_COORDS.items():
         value = bearing.get(name)
@@ -213,7 +218,7 @@ def failed_dataset(bearing, ops, config_yaml, message):
     ds = xr.Dataset({"converged": converged}, coords=coords)
     ds.attrs.update({"Conventions": "CF-1.10", "title": "failed design", "package_version": package_version(),
                      "git_commit": git_commit(), "config": config_yaml, "error": message,
-                     "created": _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")})
+                     "created": utc_now()})
     return ds
 
 

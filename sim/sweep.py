@@ -26,7 +26,6 @@ Command line: ``python -m sim.sweep collect DIR`` re-collects any sweep folder.
 """
 import argparse
 import copy
-import datetime
 import hashlib
 import json
 import logging
@@ -462,7 +461,7 @@ def collect(sweep_dir):
     ds.attrs.update({"title": f"sweep of {ds.sizes['design']} designs x {ds.sizes['case']} cases",
                      "config": manifest["config"], "sweep_overrides": " ".join(manifest["overrides"]),
                      "swept": " ".join(swept), "sweep_dir": str(sweep_dir.resolve()),
-                     "created": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")})
+                     "created": io.utc_now()})
     path = io.write_netcdf_atomic(ds, sweep_dir / SWEEP_FILE)
     _report(ds, path)
     return path

@@ -3,7 +3,6 @@
 A point that cannot be simulated is kept, never dropped: its ``status`` says why
 (impossible geometry, not converged, failed) and its results are NaN (DATA.md).
 """
-import datetime as _dt
 import time
 
 import numpy as np
@@ -11,7 +10,8 @@ import xarray as xr
 from joblib import Parallel, delayed
 
 from sim.geometry import GeometryError
-from sim.simulation import InputError, simulate
+from sim.io import CASE_VARIABLES, case_coords, utc_now
+from sim.simulation import InputError, OperatingPoint, simulate
 
 # CF flags of the ``status`` variable
 STATUS = {"ok": 0, "not_converged": 1, "geometry_error": 2, "failed": 3}
@@ -170,39 +170,40 @@ def points_dataset(space, X, records, source, round_index, attrs):
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-# On disk (training.nc) the per-point table follows DATA.md: results on (design, case) with the
-# study's one load case, and the race maximum of pmax under its own name (DATA.md's pmax is per race).
-RACE_MAXIMA = {"pmax": "pmax_both_races"}
+# On disk (training.nc, verified.nc) a per-point table follows DATA.md: results on (design, case)
+# with the study's one load case, and the race maximum of pmax under its own name (DATA.md's pmax
+# is per race). Per-design variables that are no simulation result keep the design dim only.
+RACE_MAXIMA = {"pmax": ("pmax_any_race", "maximum contact pressure over both races, all rollers and slices")}
+PER_DESIGN = ("status", "message", "feasible", EDGE_MARGIN)
 
 
 def table_to_file(ds, load):
-    """The per-point table ``ds`` (dim design) in its DATA.md form for training.nc.
+    """A per-point table ``ds`` (dim design) in its DATA.md form for writing.
 
-    Result variables (with units, i.e. not ``status``/``message``) get a ``case`` dim of length 1
-    with the load case coordinates of ``load`` (Fa, Fr [N], speed [rpm], tilt [deg],
-    oil_temperature [degC]); race maxima are renamed (RACE_MAXIMA); a ``created`` time is added.
+    Result variables on ``design`` get a ``case`` dim of length 1 with the coordinates of the
+    load case ``load`` (sim.io.case_coords); race maxima are renamed (RACE_MAXIMA); the
+    creation time joins the provenance.
     """
-    out = ds.rename({k: v for k, v in RACE_MAXIMA.items() if k in ds})
-    for old, new in RACE_MAXIMA.items():
-        if new in out:
-            out[new].attrs["long_name"] = f"{out[new].attrs.get('long_name', old)}, maximum of both races"
-    case_vars = [v for v in out.data_vars if "units" in out[v].attrs]
+    out = ds
+    for old, (new, long_name) in RACE_MAXIMA.items():
+        if old in out:
+            out = out.rename({old: new})
+            out[new].attrs["long_name"] = long_name
+    case_vars = [v for v in out.data_vars if out[v].dims == ("design",) and v not in PER_DESIGN]
     out = out.assign({v: out[v].expand_dims("case", axis=1) for v in case_vars})
-    case_coords = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
-                   "tilt": ("deg", "inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
-    out = out.assign_coords({k: ("case", [float(load[k])], {"units": u, "long_name": ln})
-                             for k, (u, ln) in case_coords.items()})
-    out.attrs["created"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    out = out.assign_coords(case_coords([OperatingPoint.from_config(load)]))
+    out.attrs.setdefault("created", utc_now())
     return out
 
 
 def table_from_file(ds):
-    """Inverse of :func:`table_to_file`: the per-point table (dim design) the search works on."""
-    out = ds.drop_vars(["Fa", "Fr", "speed", "tilt", "oil_temperature"]).squeeze("case", drop=True)
-    out = out.rename({v: k for k, v in RACE_MAXIMA.items() if v in out})
-    for old in RACE_MAXIMA:
-        if old in out:
-            out[old].attrs["long_name"] = out[old].attrs["long_name"].removesuffix(", maximum of both races")
+    """Inverse of :func:`table_to_file`: the per-point table (dim design) the search works on,
+    with the simulation's own long_name on the race maxima (sim.io.CASE_VARIABLES)."""
+    out = ds.drop_vars([k for k in ds.coords if ds[k].dims == ("case",)]).squeeze("case", drop=True)
+    for old, (new, _) in RACE_MAXIMA.items():
+        if new in out:
+            out = out.rename({new: old})
+            out[old].attrs["long_name"] = CASE_VARIABLES[old][2]
     out.attrs.pop("created", None)
     return out
 

@@ -17,7 +17,7 @@ import numpy as np  # noqa: E402
 
 from sim.io import write_netcdf_atomic  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
-from studies.evaluate import STATUS, design_config, design_matrix, simulate_point  # noqa: E402
+from studies.evaluate import STATUS, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
 from surrogate import cross_validate  # noqa: E402
 
 COLUMNS = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "edge_stress")
@@ -31,24 +31,6 @@ def verified_dataset(search, ds):
                            {"units": "1", "long_name": "normalised constraint margin, <= 0 satisfied"}),
         feasible=("design", np.all(M <= 0.0, axis=1), {"long_name": "all constraints satisfied (full simulation)"}),
     ).assign_coords(constraint=("constraint", list(search.limits.names), {"long_name": "constraint"}))
-
-
-def contract_dataset(vds, load):
-    """``vds`` in the DATA.md layout for writing: per-point results get the ``case`` dim of the
-    study's one load case (with its coordinates), ``pmax`` (the larger of the two races here)
-    becomes ``pmax_any_race``, and the creation time joins the provenance."""
-    import datetime as _dt
-
-    out = vds.rename({"pmax": "pmax_any_race"}) if "pmax" in vds else vds
-    if "pmax_any_race" in out:
-        out["pmax_any_race"].attrs["long_name"] = "maximum contact pressure over both races, all rollers and slices"
-    case_vars = [v for v in out.data_vars if out[v].dims == ("design",)
-                 and v not in ("status", "message", "feasible", "edge_stress_margin")]
-    out = out.assign({v: out[v].expand_dims(case=1, axis=1) for v in case_vars})
-    units = {"Fa": "N", "Fr": "N", "speed": "rpm", "tilt": "deg", "oil_temperature": "degC"}
-    out = out.assign_coords({k: ("case", [float(load[k])], {"units": u}) for k, u in units.items()})
-    out.attrs.setdefault("created", _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds"))
-    return out
 
 
 def comparison_rows(search, best):
@@ -173,7 +155,7 @@ def write_report(search, ds, reason):
     """Write the report files of a finished search; returns the report text (markdown)."""
     out = search.out
     vds = verified_dataset(search, ds)
-    write_netcdf_atomic(contract_dataset(vds, search.base_cfg.load), out / "verified.nc")
+    write_netcdf_atomic(table_to_file(vds, search.base_cfg.load), out / "verified.nc")
     i, key = search.best(ds)
     x = design_matrix(ds, search.space)[i]
     bearing = search.space.bearing_values(x)
