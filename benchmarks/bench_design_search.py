@@ -37,7 +37,7 @@ import xarray as xr  # noqa: E402
 from sim.io import write_netcdf_atomic  # noqa: E402
 from studies.config import compose  # noqa: E402
 from studies.loop import DesignSearch, round_seed  # noqa: E402
-from studies.search import make_sampler, open_study, run_trials  # noqa: E402
+from studies.search import make_sampler, open_study, run_trials, trial_margins  # noqa: E402
 
 
 def surrogate_trace(search):
@@ -63,7 +63,7 @@ def direct_trace(search, sampler, budget, every=10):
     trials = run_trials(study, budget, evaluate,
                         lambda k: make_sampler(sampler, round_seed(s.seed, 0, k), s.sampler_settings))
     y = np.array([t.user_attrs["values"][search.objective] for t in trials], dtype=float)
-    feasible = np.array([max(t.user_attrs["constraints"]) <= 0.0 for t in trials])
+    feasible = np.array([max(trial_margins(t)) <= 0.0 for t in trials])
     return y, feasible
 
 

@@ -49,7 +49,7 @@ def influence_matrix(x, w, E_star):
         C_ki [mm per N/mm] (module docstring).
     """
     dist = np.abs(x[:, None] - x[None, :])
-    np.fill_diagonal(dist, 1.0)
+    np.fill_diagonal(dist, w)  # placeholder > w/2 keeps the log finite; the diagonal is zeroed below
     C = np.log((dist + 0.5 * w) / (dist - 0.5 * w)) / (np.pi * E_star)
     np.fill_diagonal(C, 0.0)
     return np.ascontiguousarray(C)

@@ -27,7 +27,7 @@ from studies.constraints import FAILED, Limits, margins, rank_key
 from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, design_matrix, evaluate_design, evaluate_designs,
                               points_dataset, simulate_point, table_from_file, table_to_file)
 from studies.search import (complete_trials, finished_study, make_sampler, make_storage, open_study, persist_study,
-                            run_trials)
+                            run_trials, trial_margins)
 from studies.space import DesignSpace
 from surrogate import GPSettings, GPSurrogate, load_surrogates, save_surrogates
 
@@ -277,7 +277,7 @@ class DesignSearch:
         seen = list(self.space.unit(design_matrix(ds, self.space)))
         tol = float(self.study.budget.dedup_distance)
         chosen = []
-        for t in sorted(trials, key=lambda t: rank_key(t.value, t.user_attrs["constraints"])):
+        for t in sorted(trials, key=lambda t: rank_key(t.value, trial_margins(t))):
             if len(chosen) == k:
                 break
             if t.user_attrs["geometry_error"]:

@@ -1,9 +1,9 @@
 """Optuna with its own ask-and-tell API: samplers, storage, and a resumable constrained loop.
 
-Constraints reach the samplers through ``constraints_func``: each trial stores its margins
-(<= 0 feasible) as the user attribute ``"constraints"`` before it is told, and
-:func:`trial_constraints` hands them to TPE, GP and NSGA-II (Optuna 4.x; the project pins
-optuna < 5, where ``Trial.set_constraint`` does not exist yet).
+Constraints reach the samplers as Optuna 5 documents it: each trial stores its margins
+(<= 0 feasible) with ``Trial.set_constraint`` before it is told, and TPE, GP and NSGA-II read
+them from the trial (``FrozenTrial.constraints``); :func:`trial_margins` reads them back in
+order.
 
 Resuming: a study lives in its storage. :func:`run_trials` counts the COMPLETE trials there
 and asks only for the missing ones; the sampler is re-seeded from that count before every
@@ -16,7 +16,6 @@ storage when finished (:func:`persist_study`, :func:`finished_study`): SQLite th
 SQLAlchemy costs about 90 ms per trial, more than the trial itself. An interrupted one is
 redone, identically, since the sampler seeds depend only on the trial count.
 """
-import warnings
 from pathlib import Path
 
 import optuna
@@ -24,13 +23,13 @@ from optuna.storages import JournalStorage
 from optuna.storages.journal import JournalFileBackend
 from optuna.trial import TrialState
 
-CONSTRAINTS_ATTR = "constraints"
 FINISHED_ATTR = "finished"  # study user attribute: all trials of a persisted study are written
 
 
-def trial_constraints(trial):
-    """Constraint margins of a finished trial (``constraints_func`` of the samplers)."""
-    return trial.user_attrs[CONSTRAINTS_ATTR]
+def trial_margins(trial):
+    """Constraint margins of a finished trial, in the order they were set (<= 0 feasible)."""
+    margins = trial.constraints
+    return [margins[key] for key in sorted(margins, key=int)]
 
 
 def make_sampler(name, seed, settings):
@@ -45,12 +44,9 @@ def make_sampler(name, seed, settings):
         ``n_startup_trials`` (TPE, GP) and ``population_size`` (NSGA-II).
     """
     samplers = {
-        "tpe": lambda: optuna.samplers.TPESampler(seed=seed, n_startup_trials=int(settings["n_startup_trials"]),
-                                                  constraints_func=trial_constraints),
-        "gp": lambda: optuna.samplers.GPSampler(seed=seed, n_startup_trials=int(settings["n_startup_trials"]),
-                                                constraints_func=trial_constraints),
-        "nsga2": lambda: optuna.samplers.NSGAIISampler(seed=seed, population_size=int(settings["population_size"]),
-                                                       constraints_func=trial_constraints),
+        "tpe": lambda: optuna.samplers.TPESampler(seed=seed, n_startup_trials=int(settings["n_startup_trials"])),
+        "gp": lambda: optuna.samplers.GPSampler(seed=seed, n_startup_trials=int(settings["n_startup_trials"])),
+        "nsga2": lambda: optuna.samplers.NSGAIISampler(seed=seed, population_size=int(settings["population_size"])),
     }
     if name not in samplers:
         raise ValueError(f"sampler = {name!r} is not one of {sorted(samplers)}")
@@ -60,9 +56,7 @@ def make_sampler(name, seed, settings):
         # GPSampler fits one small GP per objective and constraint: on 2 busy cores one torch
         # thread is 3x faster than the default pool (measured, 5 inputs, 6 constraints)
         torch.set_num_threads(1)
-    with warnings.catch_warnings():  # constraints_func is "experimental" in Optuna 4: known, used on purpose
-        warnings.simplefilter("ignore", optuna.exceptions.ExperimentalWarning)
-        return samplers[name]()
+    return samplers[name]()
 
 
 def make_storage(spec):
@@ -142,7 +136,8 @@ def run_trials(study, n_trials, evaluate, sampler_for):
             raise
         for key, val in attrs.items():
             trial.set_user_attr(key, val)
-        trial.set_user_attr(CONSTRAINTS_ATTR, [float(m) for m in margins])
+        for i, m in enumerate(margins):
+            trial.set_constraint(str(i), float(m))
         study.tell(trial, float(value))
         done += 1
     return complete_trials(study)

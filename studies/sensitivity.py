@@ -117,7 +117,8 @@ def _pressure_figure(ds, cases, path):
                         label=f"Fa = {ds.Fa.values[c] / 1e3:g} kN")
         ax.set_title(variant if design.size else f"{variant} (not in the sweep)")
         ax.set_xlabel("x from the large end [mm]")
-        ax.legend(fontsize="small")
+        if design.size:
+            ax.legend(fontsize="small")
     axes[0].set_ylabel(_ylabel(ds, "pressure") + " (outer ring)")
     fig.savefig(path, dpi=100)
     return path

@@ -18,7 +18,7 @@ from studies.constraints import FAILED
 from studies.evaluate import STATUS, table_from_file
 from studies.loop import DesignSearch
 from studies.report import write_report
-from studies.search import make_sampler, open_study, run_trials
+from studies.search import make_sampler, open_study, run_trials, trial_margins
 
 TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
         "study.budget.max_simulations=12", "study.budget.trials_per_round=25", "study.budget.verify_per_round=2",
@@ -117,4 +117,4 @@ def test_impossible_geometry_is_a_recorded_infeasible_trial(tmp_path):
     assert len(trials) == len(study.get_trials()) == 3
     for t in trials:
         assert t.user_attrs["status"] == "geometry_error" and "aPk" in t.user_attrs["message"]
-        assert t.user_attrs["constraints"][0] == FAILED and np.isfinite(t.value)
+        assert trial_margins(t)[0] == FAILED and np.isfinite(t.value)

@@ -12,7 +12,7 @@ import pytest
 from optuna.trial import TrialState
 
 from studies.search import (complete_trials, finished_study, make_sampler, make_storage, open_study,
-                            persist_study, run_trials)
+                            persist_study, run_trials, trial_margins)
 
 SETTINGS = {"n_startup_trials": 10, "population_size": 20}
 F_STAR, X_STAR = 0.125, (0.55, 0.45)
@@ -26,7 +26,7 @@ def analytic(trial):
 
 
 def best_feasible(trials):
-    feasible = [t for t in trials if max(t.user_attrs["constraints"]) <= 0.0]
+    feasible = [t for t in trials if max(trial_margins(t)) <= 0.0]
     return min(feasible, key=lambda t: t.value)
 
 
@@ -99,8 +99,9 @@ def test_failing_evaluation_is_told_infeasible_not_dropped():
     trials, study = run("tpe", 12, evaluate=sometimes_failing)
     assert len(trials) == len(study.get_trials()) == 12
     failed = [t for t in trials if t.user_attrs["status"] == "failed"]
-    assert len(failed) == 6 and all(t.user_attrs["constraints"][0] > 0.0 for t in failed)
-    assert all(list(t.system_attrs["constraints"]) == t.user_attrs["constraints"] for t in trials)  # TPE's copy
+    assert len(failed) == 6 and all(trial_margins(t)[0] > 0.0 for t in failed)
+    # stored where Optuna 5's samplers read them (FrozenTrial.constraints), one key per margin
+    assert all(list(t.constraints) == [str(i) for i in range(len(trial_margins(t)))] for t in trials)
 
 
 def test_in_memory_study_is_persisted_whole_or_redone(tmp_path):
@@ -110,7 +111,8 @@ def test_in_memory_study_is_persisted_whole_or_redone(tmp_path):
     assert finished_study(storage, "round-001") is None
     persist_study(study, storage)
     again = complete_trials(finished_study(storage, "round-001"))
-    assert [(t.params, t.value, t.user_attrs) for t in again] == [(t.params, t.value, t.user_attrs) for t in trials]
+    assert [(t.params, t.value, t.user_attrs, t.constraints) for t in again] == \
+        [(t.params, t.value, t.user_attrs, t.constraints) for t in trials]
     partial = optuna.create_study(storage=storage, study_name="round-002")
     partial.add_trials(trials[:3])
     assert finished_study(storage, "round-002") is None

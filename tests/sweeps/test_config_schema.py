@@ -1,10 +1,8 @@
 """Config schemas (sim/schema.py): every shipped config composes and passes; a typo or an
 out-of-range value is refused naming the key and what is allowed; every value has its source."""
-import importlib.util
 import re
 
 import pytest
-import yaml
 from hydra import compose, initialize_config_dir
 from omegaconf import OmegaConf
 
@@ -76,15 +74,6 @@ def test_unknown_key_added_with_plus_is_refused():
     """Hydra adds '+' keys even to a schema node; the range check refuses them, suggesting the key."""
     with pytest.raises(ConfigError, match=r"bearing\.kapa is not a config key \(did you mean bearing\.kappa\?\)"):
         validate(sim.load_config(["+bearing.kapa=0.9"]))
-
-
-def test_launcher_choices():
-    """hydra/launcher=parallel composes (joblib plugin installed); slurm names the submitit plugin."""
-    sim.load_config(["hydra/launcher=parallel"])
-    slurm = yaml.safe_load((CONF / "hydra" / "launcher" / "slurm.yaml").read_text())
-    assert slurm["defaults"] == ["submitit_slurm"]
-    if importlib.util.find_spec("hydra_plugins.hydra_submitit_launcher"):
-        sim.load_config(["hydra/launcher=slurm"])
 
 
 @pytest.mark.parametrize("path", [p for d in OURS for p in sorted((CONF / d).glob("*.yaml"))], ids=str)
