@@ -136,6 +136,10 @@ class Geometry:
     R: float
     Z: int
     b_m: float
+    #: contact angle of the ISO 281 factors and ratings [deg]. TRB: derived, the cup (outer
+    #: raceway) angle alpha + gamma, as ISO 281 / ISO 355 define the nominal contact angle of
+    #: tapered roller bearings; TSRB: configured (ISO 281 has no TSRB; thesis Table 6.2 rates
+    #: the prototype at its alpha).
     ratings_alpha: float
     E: float
     nu: float
@@ -160,9 +164,13 @@ class Geometry:
         kind = str(b.get("type", ""))
         if kind not in TYPE_CODES:
             raise GeometryError(f"bearing.type = {kind!r} is impossible: it must be one of {sorted(TYPE_CODES)}")
-        common = ["alpha", "Dpw", "Dwe", "Lwe", "B", "r", "R", "Z", "b_m", "ratings_alpha"]
-        own = ["PCR", "kappa", "aP", "aPk"] if kind == "TSRB" else [
+        common = ["alpha", "Dpw", "Dwe", "Lwe", "B", "r", "R", "Z", "b_m"]
+        own = ["PCR", "kappa", "aP", "aPk", "ratings_alpha"] if kind == "TSRB" else [
             "crown_coefficient", "roller_end_radius_ratio", "rib_contact_height_ratio"]
+        if kind == "TRB" and b.get("ratings_alpha") is not None:
+            raise GeometryError(
+                f"bearing.ratings_alpha = {b['ratings_alpha']!r} does not apply to a TRB: ISO 281 rates a tapered "
+                "roller bearing at its cup (outer raceway) angle, alpha + gamma, which is derived; remove the key")
         for key in common + own:
             if key not in b or b[key] is None:
                 raise GeometryError(f"bearing.{key} is missing: a {kind} needs {', '.join(common + own)}")
@@ -175,7 +183,8 @@ class Geometry:
         for key in ("Dpw", "Dwe", "Lwe", "B", "r", "R", "b_m"):
             _require(float(b[key]) > 0.0, key, b[key], "> 0")
         _require(0.0 < float(b["alpha"]) < 60.0, "alpha", b["alpha"], "in (0, 60) deg")
-        _require(0.0 < float(b["ratings_alpha"]) < 90.0, "ratings_alpha", b["ratings_alpha"], "in (0, 90) deg")
+        if kind == "TSRB":
+            _require(0.0 < float(b["ratings_alpha"]) < 90.0, "ratings_alpha", b["ratings_alpha"], "in (0, 90) deg")
         E, nu, rho = float(material["E"]), float(material["nu"]), float(material["density"])
         _require(E > 0.0, "material.E", E, "> 0")
         _require(0.0 <= nu < 0.5, "material.nu", nu, "in [0, 0.5)")
@@ -183,10 +192,12 @@ class Geometry:
         alpha = np.radians(float(b["alpha"]))
         Dwe, Dpw = float(b["Dwe"]), float(b["Dpw"])
         extra = {k: float(b[k]) for k in own}
-        g = cls(type=kind, alpha=alpha, gamma=taper_angle(alpha, Dwe, Dpw), Dpw=Dpw, Dwe=Dwe,
+        gamma = taper_angle(alpha, Dwe, Dpw)
+        if kind == "TRB":
+            extra["ratings_alpha"] = float(np.degrees(alpha + gamma))  # ISO 281: the cup angle
+        g = cls(type=kind, alpha=alpha, gamma=gamma, Dpw=Dpw, Dwe=Dwe,
                 Lwe=float(b["Lwe"]), B=float(b["B"]), r=float(b["r"]), R=float(b["R"]), Z=int(b["Z"]),
-                b_m=float(b["b_m"]), ratings_alpha=float(b["ratings_alpha"]), E=E, nu=nu,
-                density=rho * 1e-12, n_slices=int(n_slices), **extra)
+                b_m=float(b["b_m"]), E=E, nu=nu, density=rho * 1e-12, n_slices=int(n_slices), **extra)
         g._check()
         object.__setattr__(g, "arrays", g._build_arrays())
         return g
@@ -231,6 +242,16 @@ class Geometry:
     @property
     def type_code(self):
         return TYPE_CODES[self.type]
+
+    @property
+    def cup_angle(self):
+        """Outer raceway (cup) contact angle alpha + gamma [rad] of the nominal geometry (MODEL.md 2)."""
+        return self.alpha + self.gamma
+
+    @property
+    def cone_angle(self):
+        """Inner raceway (cone) contact angle alpha - gamma [rad] of the nominal geometry (MODEL.md 2)."""
+        return self.alpha - self.gamma
 
     @property
     def PCR_LB(self):

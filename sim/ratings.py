@@ -23,6 +23,11 @@ Notes on the thesis (Table 6.2, ``load_ratings`` in ``thesis_data.yaml``)
 * For the TRB 32208, Table 6.2's e = 0.37, Y = 1.60, Y0 = 0.88 are catalogue values;
   eqs. (2.9)/(2.13) at alpha = 13.55 deg give e = 0.36, Y = 1.66, Y0 = 0.91 (the
   catalogue values correspond to alpha of about 14 deg).
+* The functions take the nominal contact angle as given. For a tapered roller bearing ISO 281
+  (with ISO 355) means the cup (outer raceway) angle; :class:`sim.geometry.Geometry` passes
+  ``ratings_alpha`` = alpha + gamma for a TRB (alpha = roller-axis angle of eq. 2.1) and the
+  configured angle for a TSRB (thesis Table 6.2 practice). The catalogue checks are in
+  tests/published/test_catalogue_ratings.py.
 * For the prototype, C0 = 93.5 kN and C = 72.8 kN of Table 6.2 are not reproduced at
   alpha = 33 deg (92.6 kN, 72.1 kN; -1.0 %), but are reproduced to the printed digits at
   alpha = 32 deg (93.48 kN, 72.84 kN, with f_c = 86.59 ~ printed 86.61), while its

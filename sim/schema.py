@@ -144,7 +144,7 @@ class BearingConfig:
 
     type: str = key(Choice(tuple(sorted(TYPE_CODES))))
     alpha: Any = key(Number(0.0, 60.0, True, True, units="deg"))
-    ratings_alpha: Any = key(Number(0.0, 90.0, True, True, units="deg"))
+    ratings_alpha: Any = key(Number(0.0, 90.0, True, True, units="deg"), only="TSRB")  # TRB: derived cup angle
     aP: Any = key(mm(), only="TSRB")
     aPk: Any = key(mm(), only="TSRB")
     B: Any = key(mm())
