@@ -110,8 +110,9 @@ def run(args, cache_dir):
         sys.path.insert(0, str(REPO))  # run from a checkout without an installed package
     import sim
     from sim.io import git_commit, package_version
-    from sim.simulation import (BearingModel, Geometry, OperatingPoint, SolverSettings, build_friction, build_model,
-                                solve_case)
+    from sim.api.bearing_model import BearingModel, OperatingPoint, SolverSettings
+    from sim.api.simulation import build_friction, build_model, solve_case
+    from sim.geometry import Geometry
 
     mode = (f"no-cache (fresh NUMBA_CACHE_DIR {cache_dir}: everything compiles)" if cache_dir
             else f"cache (on-disk numba cache{', NUMBA_CACHE_DIR=' + os.environ['NUMBA_CACHE_DIR'] if 'NUMBA_CACHE_DIR' in os.environ else ''})")
@@ -122,7 +123,7 @@ def run(args, cache_dir):
     print(f"  python         : {platform.python_version()}")
     print(f"  cpu            : {cpu_model()}")
     print(f"  slices         : {args.slices}")
-    print(f"  threads        : 1")
+    print("  threads        : 1")
     print(f"  jit mode       : {mode}")
     print(f"  repeats        : {args.repeats} after 1 warm-up")
     print()
@@ -198,7 +199,7 @@ def run(args, cache_dir):
     for note in sorted({r["note"] for r in rows if r["note"]}):
         print(f"note: {note}")
     print()
-    print(f"with friction: sim.simulation.solve_case (load distribution, traction kinematics, friction, cage")
+    print("with friction: sim.api.simulation.solve_case (load distribution, traction kinematics, friction, cage")
     print(f"pocket friction fed back into the load distribution, friction again), target {FRICTION_TARGET_MS:.0f} ms")
     head = f"{'bearing':<15} {'case':<11} {'median ms':>10} {'min ms':>9} {'':>4}  {'torque N mm':>11} {'conv':>5}"
     print(head)
@@ -250,7 +251,7 @@ def write_netcdf(rows, args, cache_dir):
     import numpy as np
     import xarray as xr
 
-    from sim.io import write_netcdf_atomic
+    from sim.io import git_commit, package_version, write_netcdf_atomic
 
     cases = list(CASES)
     shape = (len(BEARINGS), len(cases))

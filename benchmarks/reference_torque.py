@@ -5,7 +5,7 @@
 
 Conditions of the thesis's rig (6.3, 7.2.5): pure axial load, inner ring 2000 rpm, FVA 3 at
 55 degC (viscosity, density, temperature-viscosity coefficient from conf/lubricant/fva3.yaml via
-sim.lubricant). Loads Fa = 1.5, 3, 4.5, 10, 20, 40 kN. Prints each model's torque [N mm], the
+sim.physics.lubricant). Loads Fa = 1.5, 3, 4.5, 10, 20, 40 kN. Prints each model's torque [N mm], the
 exponent n of torque ~ Fa^n fitted over 4.5-40 kN, and Aihara's rib term against Fa.
 
 Inputs of the reference models (sim/reference_models.py, sources there):
@@ -26,8 +26,8 @@ import numpy as np
 
 import sim
 from sim.geometry import Geometry
-from sim.lubricant import Lubricant
-from sim.reference_models import SKF_TAPERED_CONSTANTS, aihara_1987_trb, aihara_rolling_moment, skf_2004_trb, \
+from sim.physics.lubricant import Lubricant
+from sim.physics.reference_models import SKF_TAPERED_CONSTANTS, aihara_1987_trb, aihara_rolling_moment, skf_2004_trb, \
     torque_exponent
 
 LOADS = [1500.0, 3000.0, 4500.0, 10000.0, 20000.0, 40000.0]   # N

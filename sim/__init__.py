@@ -24,7 +24,7 @@ def load_config(overrides=None):
     from hydra import compose, initialize_config_dir
     from hydra.core.global_hydra import GlobalHydra
 
-    import sim.schema  # noqa: F401  registers the group schemas that conf/config.yaml composes
+    import sim.api.schema  # noqa: F401  registers the group schemas that conf/config.yaml composes
 
     if GlobalHydra.instance().is_initialized():
         GlobalHydra.instance().clear()
@@ -33,8 +33,8 @@ def load_config(overrides=None):
 
 
 def simulate(cfg):
-    """Simulate a composed config; see :func:`sim.simulation.simulate`."""
-    from sim.simulation import simulate as _simulate
+    """Simulate a composed config; see :func:`sim.api.simulation.simulate`."""
+    from sim.api.simulation import simulate as _simulate
 
     return _simulate(cfg)
 

@@ -18,17 +18,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from sim.errors import GeometryError
+
 TRB = 0
 TSRB = 1
 TYPE_CODES = {"TRB": TRB, "TSRB": TSRB}
 
-# Raceway profile kinds understood by sim.contact.
+# Raceway profile kinds understood by sim.physics.contact.
 RACE_LINE = 0  # straight generatrix (cone): point and unit normal into the ring
 RACE_LENS = 1  # two circular arcs of equal radius whose disks intersect (TSRB, "two intersected tori")
-
-
-class GeometryError(ValueError):
-    """Impossible bearing geometry; the message names the parameter, its value and the bound."""
 
 
 def taper_angle(alpha, Dwe, Dpw):

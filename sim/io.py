@@ -15,8 +15,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from sim import ratings
-from sim.friction import COMPONENTS
+from sim.physics import ratings
+from sim.physics.friction import COMPONENTS
 
 RACES = ["outer", "inner"]
 
@@ -106,7 +106,7 @@ def utc_now():
 
 
 def case_coords(ops):
-    """Case coordinates (DATA.md) of a list of sim.simulation.OperatingPoint."""
+    """Case coordinates (DATA.md) of a list of sim.api.simulation.OperatingPoint."""
     attrs = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
              "tilt": ("deg", "imposed inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
     return {name: ("case", [getattr(o, name) for o in ops], {"units": units, "long_name": long_name})
@@ -119,12 +119,12 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     Parameters
     ----------
     geometry : sim.geometry.Geometry
-    ops : list of sim.simulation.OperatingPoint
+    ops : list of sim.api.simulation.OperatingPoint
     results : list of dict
-        Per-case outputs of :func:`sim.simulation.case_results` (output units).
+        Per-case outputs of :func:`sim.api.simulation.case_results` (output units).
     config_yaml : str
         The full resolved config.
-    settings : sim.simulation.SolverSettings
+    settings : sim.api.simulation.SolverSettings
     """
     g = geometry
     sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 2, "component": len(COMPONENTS)}

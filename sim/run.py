@@ -6,7 +6,7 @@
     python -m sim.run --multirun hydra/launcher=parallel "bearing.kappa=range(0.95,0.995,0.01)"
 
 A single run writes ``result.nc`` in Hydra's run directory and prints a summary; cases come
-from the result cache when already computed (:mod:`sim.sweep`). A multirun job writes its
+from the result cache when already computed (:mod:`sim.api.sweep`). A multirun job writes its
 result (or ``failed.json``) in its job folder and logs one line; ``sweep.nc`` follows the
 last job. Any ``bearing.<param>=`` override works (e.g. ``bearing.PCR=120``).
 """
@@ -19,7 +19,7 @@ from hydra.types import RunMode
 from omegaconf import DictConfig
 
 from sim.io import write_netcdf_atomic
-from sim.sweep import run_cases, run_job
+from sim.api.sweep import run_cases, run_job
 
 
 def friction_summary(case):

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from sim import ratings
+from sim.api import ratings
 from studies.config import StudyConfigError
 from studies.evaluate import EDGE_MARGIN
 

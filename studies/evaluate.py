@@ -9,9 +9,8 @@ import numpy as np
 import xarray as xr
 from joblib import Parallel, delayed
 
-from sim.geometry import GeometryError
 from sim.io import CASE_VARIABLES, case_coords, utc_now
-from sim.simulation import InputError, OperatingPoint, simulate
+from sim.api import GeometryError, InputError, OperatingPoint, simulate
 
 # CF flags of the ``status`` variable
 STATUS = {"ok": 0, "not_converged": 1, "geometry_error": 2, "failed": 3}
@@ -47,7 +46,7 @@ def edge_stress_margin(pressure, output_cfg):
         max over races of min(p_end - threshold, p_end - ratio p_int) / max(p_int, p_end, threshold)
         [1], with p_end the higher end-slice and p_int the highest interior-slice pressure. It is
         > 0 exactly when the simulation flags an edge stress (both conditions of
-        sim.simulation.case_results), and the denominator keeps it within [-ratio, 1].
+        sim.api.bearing_model.case_results), and the denominator keeps it within [-ratio, 1].
     """
     p = np.asarray(pressure, dtype=float)
     threshold = float(output_cfg["contact_pressure_threshold"])
@@ -82,7 +81,7 @@ def simulate_point(cfg, quantities):
 
     Raises
     ------
-    sim.simulation.InputError
+    sim.errors.InputError
         Bad load or solver input: the same for every point, so a configuration error.
     KeyError
         A quantity that a converged simulation does not produce.

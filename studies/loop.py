@@ -20,7 +20,7 @@ import optuna
 import xarray as xr
 from omegaconf import OmegaConf
 
-from sim.geometry import Geometry, GeometryError
+from sim.api import Geometry, GeometryError
 from sim.io import write_netcdf_atomic
 from studies.config import StudyConfigError, output_dir, simulation_config, storage_spec
 from studies.constraints import FAILED, Limits, margins, rank_key

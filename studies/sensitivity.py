@@ -22,7 +22,7 @@ from matplotlib.figure import Figure
 from omegaconf import OmegaConf
 
 from sim import CONF_DIR
-from sim.cases import operating_points
+from sim.api.cases import operating_points
 
 COMPARED = ("trb_32208", "reference")  # in every figure, as the thesis's blue and green bars
 FAMILIES = {  # Table 7.2; torque and pmax figures 7.7/7.8, 7.10/7.11, 7.12/7.13, 7.14/7.15, 7.16/7.17

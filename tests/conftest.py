@@ -2,7 +2,7 @@
 import pytest
 
 import sim
-from sim.simulation import build_model
+from sim.api.simulation import build_model
 
 
 @pytest.fixture

@@ -1,7 +1,7 @@
 """Test helpers: load cases and independent recomputation of forces from a solved state."""
 import numpy as np
 
-from sim.simulation import OperatingPoint
+from sim.api import OperatingPoint
 
 
 def case(Fa, Fr=0.0, speed=2000.0, tilt=0.0, oil_temperature=55.0):
@@ -17,7 +17,7 @@ def race_forces(model, raw, race=1, tilt_deg=0.0):
     loads; the force of roller j on the ring is +q w n (n into the ring), summed as 3-D vectors
     over the azimuths (x = radial component times cos(psi)).
     """
-    from sim.contact import slice_contact_meridian
+    from sim.physics.contact import slice_contact_meridian
 
     g = model.geometry
     a = g.arrays
@@ -43,7 +43,7 @@ def roller_residuals(model, raw, op, ext=None):
     """Relative residual of every loaded roller: contact forces (recomputed from the returned
     poses and ring) + centrifugal force + gyroscopic moment + external load ``ext`` (Z, 3),
     over its loads [1]."""
-    from sim.contact import roller_axes
+    from sim.physics.contact import roller_axes
     from sim.solvers.quasi_static import roller_state
 
     g = model.geometry

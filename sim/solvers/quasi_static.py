@@ -49,32 +49,32 @@ Solution strategy.
 - Axisymmetric case (no radial load, no tilt, equal roller loads): one roller, with the ring's
   axial displacement solved together with it under load control (the roller's share Fa / Z),
   so that a TSRB whose contact migrates to the roller edge keeps its load on the way.
-- :meth:`sim.simulation.BearingModel.solve` continues from the axisymmetric case in Fr, tilt
+- :meth:`sim.api.simulation.BearingModel.solve` continues from the axisymmetric case in Fr, tilt
   and roller loads when the direct solve fails.
 
 Body loads on a loaded roller: centrifugal force m omega_c^2 Dpw/2 along e_r and the
 gyroscopic moment I_x omega_R omega_c sin(alpha) (rigid-body dynamics of a roller spinning
 about its axis while the cage turns about z). External roller loads (friction, from
-:mod:`sim.friction`): per roller [force along u' towards the large end, force along v',
+:mod:`sim.physics.friction`): per roller [force along u' towards the large end, force along v',
 moment about u' x v'], [N, N, N mm], added to the roller residual like the body loads.
 Rollers that the rings do not squeeze (rigid clearance) are unloaded: the cage holds them,
 their small centrifugal load on the outer ring is neglected and so is any external load on
 them (documented simplification; the dynamic solver treats them fully).
 
 Iterative kernels return status flags instead of raising (STYLE.md); the wrapper in
-:mod:`sim.simulation` decides.
+:mod:`sim.api.simulation` decides.
 """
 import numpy as np
 
-from sim._jit import kernel
-from sim.contact import roller_axes, slice_contact_meridian, hertz_point_load
-from sim.elasticity import coupled_slice_loads, coupled_slice_compliance, independent_slice_loads
+from sim._math.jit import kernel
+from sim.physics.contact import roller_axes, slice_contact_meridian, hertz_point_load
+from sim.physics.elasticity import coupled_slice_loads, coupled_slice_compliance, independent_slice_loads
 from sim.geometry import RACE_LENS
-from sim.solvers.linalg import solve_dense
+from sim._math.linalg import solve_dense
 
 NY = 5  # generalised coordinates per roller block: a (along u'), b (along v'), theta, delta_a, delta_r
 
-# Solver parameters, packed for the kernels by sim.simulation.BearingModel from SolverSettings
+# Solver parameters, packed for the kernels by sim.api.simulation.BearingModel from SolverSettings
 # (conf/solver/quasi_static.yaml); meaning and units there.
 (SP_TOL, SP_MAX_ITER, SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_FORCING, SP_TRUST, SP_MAX_STEP,
  SP_BACKTRACKS, SP_RING_STEP) = range(9)
@@ -188,7 +188,7 @@ def _roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_
                 if act[k]:
                     m += 1
             if m > 0:
-                # dq/dd = J^-1 on the loaded set (sim.elasticity.coupled_slice_compliance)
+                # dq/dd = J^-1 on the loaded set (sim.physics.elasticity.coupled_slice_compliance)
                 Jfull = np.empty((n, n))
                 coupled_slice_compliance(C, w, R_eq[s], E_star, qs, act, Jfull)
                 idx = np.empty(m, dtype=np.int64)

@@ -3,8 +3,8 @@ import numpy as np
 import pytest
 
 import sim
-from sim.contact import slice_contact_3d, slice_contact_meridian
-from sim.simulation import build_model
+from sim.physics.contact import slice_contact_3d, slice_contact_meridian
+from sim.api.simulation import build_model
 
 
 def _setup(bearing):
@@ -81,7 +81,7 @@ def test_3d_kernel_equals_meridian_without_skew_and_loses_depth_with_skew(bearin
             e1 /= np.linalg.norm(e1)
             e2 = np.cross(axis, e1)
             t = np.linspace(-0.2, 0.2, 20001)
-            from sim.contact import race_penetration
+            from sim.physics.contact import race_penetration
             for k in (0, n // 2, n - 1):
                 c = centre + a["x"][k] * axis
                 P = c[None, :] + a["rho"][k] * (np.cos(t)[:, None] * e1 + np.sin(t)[:, None] * e2)

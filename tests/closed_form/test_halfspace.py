@@ -1,4 +1,4 @@
-"""Closed-form checks of the half-space reference contact solver ``sim.halfspace``.
+"""Closed-form checks of the half-space reference contact solver ``sim.physics.halfspace``.
 
 The solver is the reference for pressure distributions (and edge-stress peaks) of the
 slice model of roller-raceway line contacts, so it is proven here against Hertz theory
@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from sim.halfspace import (
+from sim.physics.halfspace import (
     influence_coefficients_rectangle,
     line_load_along_x,
     solve_contact_halfspace,

@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from sim.ratings import (
+from sim.physics.ratings import (
     basic_rating_life,
     dynamic_load_rating,
     equivalent_dynamic_load,

@@ -10,8 +10,8 @@ contact, body and external loads.
 import numpy as np
 import pytest
 
-from sim.contact import roller_axes
-from sim.simulation import BearingModel, case_results
+from sim.physics.contact import roller_axes
+from sim.api.bearing_model import BearingModel, case_results
 from sim.solvers.quasi_static import (NAUX, NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP,
                                       SP_RING_STEP, SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST,
                                       _roller_state, solve_roller)

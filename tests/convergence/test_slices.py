@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from sim.contact import contact_modulus
-from sim.elasticity import coupled_slice_loads, influence_matrix
-from sim.halfspace import line_load_along_x, solve_contact_halfspace
+from sim.physics.contact import contact_modulus
+from sim.physics.elasticity import coupled_slice_loads, influence_matrix
+from sim.physics.halfspace import line_load_along_x, solve_contact_halfspace
 from tests.helpers import case
 
 

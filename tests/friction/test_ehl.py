@@ -1,6 +1,6 @@
 """EHL film, mixed-friction and lubricant building blocks against published numbers and limits.
 
-Kernels of :mod:`sim.ehl` (units mm, N, MPa, s; viscosity MPa s) and :class:`sim.lubricant.Lubricant`.
+Kernels of :mod:`sim.physics.ehl` (units mm, N, MPa, s; viscosity MPa s) and :class:`sim.physics.lubricant.Lubricant`.
 Every expected number is either printed in a cited source, a closed-form limit of the published
 law the kernel implements, or an exponent of that law; no value is copied from our own output.
 """
@@ -13,8 +13,8 @@ import pytest
 from omegaconf import OmegaConf
 from scipy.integrate import quad
 
-from sim import ehl, friction
-from sim.lubricant import Lubricant
+from sim.physics import ehl, friction
+from sim.physics.lubricant import Lubricant
 
 REPO = Path(__file__).resolve().parents[2]
 

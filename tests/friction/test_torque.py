@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import sim
-from sim.kinematics import cage_speed_rolling
+from sim.physics.kinematics import cage_speed_rolling
 
 
 def run(bearing, *overrides):
@@ -59,7 +59,7 @@ def test_cage_speed_follows_rolling_kinematics_under_load():
     is below it (the cage lags, losses brake the rollers)."""
     for bearing in ("trb_32208", "tsrb_reference"):
         case = run(bearing)
-        g = sim.simulation.build_model(sim.load_config([f"bearing={bearing}"])).geometry
+        g = sim.api.simulation.build_model(sim.load_config([f"bearing={bearing}"])).geometry
         rolling = cage_speed_rolling(2000.0, 0.0, g.Dwe, g.Dpw, g.alpha)
         assert abs(float(case.cage_speed) - rolling) < 0.01 * rolling
 

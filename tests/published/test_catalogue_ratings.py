@@ -25,8 +25,8 @@ import pytest
 
 import sim
 from sim.geometry import Geometry, GeometryError
-from sim.ratings import dynamic_load_rating, load_factors, static_load_rating
-from sim.schema import ConfigError, validate
+from sim.physics.ratings import dynamic_load_rating, load_factors, static_load_rating
+from sim.api.schema import ConfigError, validate
 
 CATALOGUE = {
     "trb_32208": {"e": 0.37, "Y": 1.60, "Y0": 0.88},   # Schaeffler via thesis Table 6.2

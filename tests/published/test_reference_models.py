@@ -1,7 +1,7 @@
 """The published TRB torque models of sim/reference_models.py against hand-computed values.
 
 No published worked example of either model was found (module docstring of
-sim.reference_models), so each test evaluates the quoted formula step by step by hand for one
+sim.physics.reference_models), so each test evaluates the quoted formula step by step by hand for one
 point and checks the limits and exponents the formulas imply. Tolerances are floating-point
 (1e-12) where the same arithmetic is repeated, and stated where a hand-rounded number is used.
 """
@@ -9,7 +9,7 @@ import math
 
 import pytest
 
-from sim.reference_models import (SKF_TAPERED_CONSTANTS, aihara_1987_trb, aihara_rolling_moment, skf_2004_trb,
+from sim.physics.reference_models import (SKF_TAPERED_CONSTANTS, aihara_1987_trb, aihara_rolling_moment, skf_2004_trb,
                                   torque_exponent)
 
 C322 = SKF_TAPERED_CONSTANTS["322"]

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 from omegaconf import OmegaConf
 
-from sim import CONF_DIR, ratings
+from sim import CONF_DIR
+from sim.physics import ratings
 from studies.config import compose
 from studies.constraints import FAILED, Limits, margins, rank_key, violation
 from studies.evaluate import edge_stress_margin
@@ -65,7 +66,7 @@ def test_edge_stress_switch_and_rank_order():
     ([[500, 900, 1000, 900, 400], [1001, 0, 1000, 0, 0]], True),  # one race suffices
 ])
 def test_edge_stress_margin_has_the_sign_of_the_simulation_flag(pressure, flagged):
-    """sim.simulation.case_results flags (p_end > threshold) & (p_end > ratio p_interior); the margin is > 0
+    """sim.api.bearing_model.case_results flags (p_end > threshold) & (p_end > ratio p_interior); the margin is > 0
     exactly then, and stays within [-ratio, 1]."""
     m = edge_stress_margin(np.array(pressure, dtype=float), OUTPUT)
     assert (m > 0.0) == flagged

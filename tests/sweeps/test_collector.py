@@ -1,4 +1,4 @@
-"""The collector (sim.sweep.collect, sim.io.combine_designs): whatever variables the run files hold
+"""The collector (sim.api.sweep.collect, sim.io.combine_designs): whatever variables the run files hold
 are merged point by point; a job that never finished is reported; unlike designs still combine."""
 import shutil
 import subprocess
@@ -9,8 +9,8 @@ import xarray as xr
 
 import sim
 from sim import io
-from sim.friction import COMPONENTS
-from sim.sweep import collect, main
+from sim.physics.friction import COMPONENTS
+from sim.api.sweep import collect, main
 from tests.sweeps.common import FAST, REPO
 
 CHECKER = REPO.parent / "shared" / "tools" / "check_result.py"
@@ -21,7 +21,7 @@ def copy_of(sweep, tmp_path):
 
 
 def test_collect_command_rebuilds_the_same_dataset(parallel_sweep, tmp_path, capsys):
-    """python -m sim.sweep collect DIR gives the dataset the multirun wrote."""
+    """python -m sim.api.sweep collect DIR gives the dataset the multirun wrote."""
     main(["collect", str(copy_of(parallel_sweep, tmp_path))])
     assert capsys.readouterr().out.strip().endswith("sweep.nc")
     rebuilt = xr.load_dataset(tmp_path / "sweep" / "sweep.nc")

@@ -7,8 +7,8 @@ from hydra import compose, initialize_config_dir
 from omegaconf import OmegaConf
 
 import sim
-from sim.schema import ConfigError, validate
-from sim.sweep import sweep_jobs
+from sim.api.schema import ConfigError, validate
+from sim.api.sweep import sweep_jobs
 
 CONF = sim.CONF_DIR
 OPTIONS = [(group, p.stem) for group in ("bearing", "material", "lubricant", "friction", "load", "solver", "output")

@@ -1,10 +1,10 @@
-"""Load grids (sim.cases): full factorial, zipped lists, refused grids, and the thesis grids of conf/load."""
+"""Load grids (sim.api.cases): full factorial, zipped lists, refused grids, and the thesis grids of conf/load."""
 import pytest
 from omegaconf import OmegaConf
 
 import sim
-from sim.cases import operating_points
-from sim.simulation import InputError
+from sim.api.cases import operating_points
+from sim.api import InputError
 
 
 def cases(**load):

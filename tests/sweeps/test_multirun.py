@@ -21,9 +21,9 @@ from hydra.types import RunMode
 from omegaconf import OmegaConf
 
 import sim
-import sim.sweep
-from sim.simulation import simulate
-from sim.sweep import SweepCallback, collect, run_job
+import sim.api.sweep
+from sim.api.simulation import simulate
+from sim.api.sweep import SweepCallback, collect, run_job
 from tests.sweeps.common import FAST, REPO, SWEEP, multirun
 
 PER_RUN = {"wall_time"}  # solver time of a case: differs between two computations of the same point
@@ -120,7 +120,7 @@ def test_rerun_computes_nothing_but_the_failed_points(parallel_sweep, tmp_path, 
     and the collector gives the same dataset, run times included."""
     sweep = shutil.copytree(parallel_sweep.dir, tmp_path / "sweep")
     calls = []
-    monkeypatch.setattr(sim.sweep, "simulate", lambda cfg: calls.append(float(cfg.bearing.PCR)) or simulate(cfg))
+    monkeypatch.setattr(sim.api.sweep, "simulate", lambda cfg: calls.append(float(cfg.bearing.PCR)) or simulate(cfg))
     for job in json.loads((sweep / "sweep.json").read_text())["jobs"]:
         run_job(OmegaConf.create(job["config"]), sweep / str(job["job"]), job["job"], job["overrides"])
     assert calls == [8.0, 8.0]

@@ -1,4 +1,4 @@
-"""The result cache of sim.sweep: a re-run computes nothing, an interrupted run resumes, a damaged
+"""The result cache of sim.api.sweep: a re-run computes nothing, an interrupted run resumes, a damaged
 or unconverged entry is recomputed, and the key follows what is computed, not where it is written.
 """
 import logging
@@ -8,9 +8,9 @@ import xarray as xr
 from omegaconf import OmegaConf
 
 import sim
-import sim.sweep
-from sim.cases import operating_points
-from sim.sweep import _key_base, cache_file, case_key, run_cases
+import sim.api.sweep
+from sim.api.cases import operating_points
+from sim.api.sweep import _key_base, cache_file, case_key, run_cases
 from tests.sweeps.common import FAST
 
 GRID = ["load.Fa=[3000,5000]", "load.Fr=[0,2000]"]  # 4 cases in one run
@@ -18,7 +18,7 @@ GRID = ["load.Fa=[3000,5000]", "load.Fr=[0,2000]"]  # 4 cases in one run
 
 @pytest.fixture
 def calls(monkeypatch):
-    """Counts sim.simulate calls made by sim.sweep; ``calls.fail_at = n`` interrupts the n-th call."""
+    """Counts sim.simulate calls made by sim.api.sweep; ``calls.fail_at = n`` interrupts the n-th call."""
 
     class Counter:
         n = 0
@@ -30,8 +30,8 @@ def calls(monkeypatch):
             raise KeyboardInterrupt  # what a killed process leaves: no result for this case
         return real(cfg)
 
-    real = sim.sweep.simulate
-    monkeypatch.setattr(sim.sweep, "simulate", counting)
+    real = sim.api.sweep.simulate
+    monkeypatch.setattr(sim.api.sweep, "simulate", counting)
     return Counter
 
 
@@ -71,7 +71,7 @@ def test_damaged_entry_is_recomputed(tmp_path, calls, caplog):
     first, _ = run_cases(config(tmp_path), progress=False)
     entry = sorted(tmp_path.rglob("*.pkl"))[0]
     entry.write_bytes(entry.read_bytes()[:100])
-    with caplog.at_level(logging.WARNING, logger="sim.sweep"):
+    with caplog.at_level(logging.WARNING, logger="sim.api.sweep"):
         again, n = run_cases(config(tmp_path), progress=False)
     assert n["computed"] == 1 and calls.n == 5
     assert "unreadable" in caplog.text
@@ -113,3 +113,10 @@ def test_grid_run_equals_simulate(tmp_path):
     cached, _ = run_cases(cfg, progress=False)
     direct = sim.simulate(cfg)
     xr.testing.assert_identical(without_run_times(cached), without_run_times(direct))
+
+
+def test_code_fingerprint_covers_every_layer_of_sim():
+    """A change to any kernel (physics, solvers, numerics) must invalidate the cache."""
+    names = {str(path.relative_to(sim.api.sweep.SIM_ROOT)) for path in sim.api.sweep.fingerprint_sources()}
+    for required in ("physics/friction.py", "solvers/quasi_static.py", "_math/jit.py", "geometry.py", "api/simulation.py"):
+        assert required in names

@@ -12,8 +12,8 @@ from matplotlib.figure import Figure
 
 import sim
 from sim import io
-from sim.cases import operating_points
-from sim.sweep import run_cases
+from sim.api.cases import operating_points
+from sim.api.sweep import run_cases
 from studies.sensitivity import FAMILIES, plot_figures
 from tests.sweeps.common import FAST
 

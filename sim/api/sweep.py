@@ -14,7 +14,7 @@ Result cache (nothing lost, nothing redone)
 
 Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
     Before the first job the callback composes every job's config, refuses the whole sweep if
-    any value is outside its schema (:func:`sim.schema.validate`), writes the job list
+    any value is outside its schema (:func:`sim.api.schema.validate`), writes the job list
     ``sweep.json`` and computes, in the launching process, the first uncached case of each
     kind of job, which compiles (or loads) every numba kernel once into the on-disk cache,
     before parallel workers start: no two processes compile the same kernel at once. Each job
@@ -22,7 +22,7 @@ Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
     impossible geometry fails that point, not the sweep) and logs one line. After the last job
     :func:`collect` merges the jobs into ``<sweep dir>/sweep.nc``.
 
-Command line: ``python -m sim.sweep collect DIR`` re-collects any sweep folder.
+Command line: ``python -m sim.api.sweep collect DIR`` re-collects any sweep folder.
 """
 import argparse
 import copy
@@ -45,9 +45,9 @@ from omegaconf import OmegaConf
 from tqdm import tqdm
 
 from sim import io
-from sim.cases import operating_points
-from sim.schema import ConfigError, validate
-from sim.simulation import simulate
+from sim.api.cases import operating_points
+from sim.api.schema import ConfigError, validate
+from sim.api.simulation import simulate
 
 log = logging.getLogger(__name__)
 
@@ -59,15 +59,22 @@ BASIC_SWEEPER = "hydra._internal.core_plugins.basic_sweeper.BasicSweeper"
 
 
 # ------------------------------------------------------------------ cache keys and cached cases
+SIM_ROOT = Path(__file__).resolve().parents[1]   # the whole sim/ package, every layer
+
+
+def fingerprint_sources():
+    """Every source file of ``sim/`` (all subpackages), in a fixed order."""
+    return sorted(SIM_ROOT.rglob("*.py"))
+
+
 @lru_cache(maxsize=1)
 def code_fingerprint():
     """SHA-256 over the sources of ``sim/`` and the numpy, numba and xarray versions."""
     import numba
 
     h = hashlib.sha256(f"numpy {np.__version__} numba {numba.__version__} xarray {xr.__version__}".encode())
-    root = Path(__file__).resolve().parent
-    for path in sorted(root.rglob("*.py")):
-        h.update(str(path.relative_to(root)).encode())
+    for path in fingerprint_sources():
+        h.update(str(path.relative_to(SIM_ROOT)).encode())
         h.update(path.read_bytes())
     return h.hexdigest()
 
@@ -99,7 +106,7 @@ def _key_base(cfg):
 
 
 def case_key(base, op):
-    """Cache key of one load case ``op`` (sim.simulation.OperatingPoint) of a config (``_key_base``)."""
+    """Cache key of one load case ``op`` (sim.api.simulation.OperatingPoint) of a config (``_key_base``)."""
     payload = dict(base, case=[op.Fa, op.Fr, op.speed, op.tilt, op.oil_temperature])
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()
 
@@ -482,8 +489,8 @@ def _report(ds, path, shown=10):
 
 
 def main(argv=None):
-    """``python -m sim.sweep collect DIR``: (re)build ``DIR/sweep.nc`` from the jobs in DIR."""
-    parser = argparse.ArgumentParser(prog="python -m sim.sweep", description=main.__doc__)
+    """``python -m sim.api.sweep collect DIR``: (re)build ``DIR/sweep.nc`` from the jobs in DIR."""
+    parser = argparse.ArgumentParser(prog="python -m sim.api.sweep", description=main.__doc__)
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("collect", help="merge the jobs of a sweep folder into sweep.nc").add_argument("dir", type=Path)
     args = parser.parse_args(argv)

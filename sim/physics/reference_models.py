@@ -1,6 +1,6 @@
 """Published whole-bearing friction torque models of tapered roller bearings (references, not the model).
 
-Independent references for the torque of ``sim.friction`` (issue 14 items 3 and 8). Plain numpy,
+Independent references for the torque of ``sim.physics.friction`` (issue 14 items 3 and 8). Plain numpy,
 SI-free engineering units as each source states them. Nothing here is fitted to this project.
 
 Sources and how far each form could be verified (``search`` tool, November 2026):

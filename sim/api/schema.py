@@ -8,14 +8,14 @@ with ``+`` through; :func:`validate` refuses it and suggests the declared key).
 
 Values are typed ``Any`` at composition so that they reach the physics modules exactly as
 written (``bearing.alpha=0`` stays the int 0 that :mod:`sim.geometry` prints back) and so that
-a load value may be a number or a list (a grid, :mod:`sim.cases`). Type and range live in
+a load value may be a number or a list (a grid, :mod:`sim.api.cases`). Type and range live in
 each field's metadata; :func:`validate` checks them for a whole composed config and raises one
 :class:`ConfigError` naming every bad key, its value and the allowed range. ``python -m
-sim.run`` calls it before anything runs (through :class:`sim.sweep.SweepCallback`), for every
+sim.run`` calls it before anything runs (through :class:`sim.api.sweep.SweepCallback`), for every
 point of a multirun before the first job starts.
 
 The ranges are the bounds the physics modules enforce key by key (``sim.geometry``,
-``sim.simulation``, ``sim.friction``, ``sim.lubricant``); combined feasibility (a roller that
+``sim.api.simulation``, ``sim.physics.friction``, ``sim.physics.lubricant``); combined feasibility (a roller that
 does not fit, aPk + aP >= Lwe) stays with :mod:`sim.geometry` and fails the point, not the sweep.
 A new key in any ``conf/`` file must be declared here.
 """
@@ -27,14 +27,10 @@ from typing import Any
 from hydra.core.config_store import ConfigStore
 from omegaconf import MISSING, DictConfig, ListConfig, OmegaConf
 
-from sim.cases import operating_points
-from sim.elasticity import ELASTICITY_MODES
+from sim.api.cases import operating_points
+from sim.physics.elasticity import ELASTICITY_MODES
 from sim.geometry import TYPE_CODES
-from sim.simulation import InputError
-
-
-class ConfigError(ValueError):
-    """Config values outside their schema; the message names each key, value and allowed range."""
+from sim.errors import ConfigError, InputError
 
 
 @dataclass(frozen=True)
@@ -128,7 +124,7 @@ def mm():
 # ---------------------------------------------------------------------------- bearing
 @dataclass
 class SurfaceConfig:
-    """Roughness and Zhou-Hoeprich mixed friction (thesis (5.16)); bounds of sim.friction."""
+    """Roughness and Zhou-Hoeprich mixed friction (thesis (5.16)); bounds of sim.physics.friction."""
 
     sigma: Any = key(Number(0.0, 10.0, low_open=True, units="um"))
     B_ZH: Any = key(Number(0.0, 20.0, low_open=True))
@@ -178,7 +174,7 @@ class MaterialConfig:
 
 @dataclass
 class LubricantConfig:
-    """Oil data (thesis Tables A.1, A.4); bounds of sim.lubricant."""
+    """Oil data (thesis Tables A.1, A.4); bounds of sim.physics.lubricant."""
 
     name: str = key(Text())
     temperature: Any = key(Number(-40.0, 200.0, units="degC", shape="list"))
@@ -197,7 +193,7 @@ class LubricantConfig:
 
 @dataclass
 class DragConfig:
-    """Roller drag in the oil (Harris & Kotzalas 2007); bounds of sim.friction."""
+    """Roller drag in the oil (Harris & Kotzalas 2007); bounds of sim.physics.friction."""
 
     model: str = key(Choice(("none", "roller_drag")))
     drag_coefficient: Any = key(Number(0.0, 10.0))
@@ -206,7 +202,7 @@ class DragConfig:
 
 @dataclass
 class FrictionConfig:
-    """EHL mixed friction (thesis 5.4); bounds of sim.friction."""
+    """EHL mixed friction (thesis 5.4); bounds of sim.physics.friction."""
 
     enabled: bool = key(Flag())
     solid_friction_coefficient: Any = key(Number(0.0, 1.0))
@@ -226,7 +222,7 @@ class FrictionConfig:
 
 @dataclass
 class LoadConfig:
-    """One operating point or a grid of them (:mod:`sim.cases`); bounds of sim.simulation.
+    """One operating point or a grid of them (:mod:`sim.api.cases`); bounds of sim.api.simulation.
 
     ``zip`` lists groups of keys whose lists pair up element by element; all other lists
     combine as a full factorial.
@@ -242,7 +238,7 @@ class LoadConfig:
 
 @dataclass
 class SolverConfig:
-    """Quasi-static solver settings (MODEL.md 4); bounds of sim.simulation.SolverSettings."""
+    """Quasi-static solver settings (MODEL.md 4); bounds of sim.api.simulation.SolverSettings."""
 
     name: str = key(Choice(("quasi_static",)))
     n_slices: Any = key(Number(2, 400, integer=True))
@@ -263,7 +259,7 @@ class SolverConfig:
 
 @dataclass
 class OutputConfig:
-    """What is written, where results are cached (:mod:`sim.sweep`), how edge stress is judged."""
+    """What is written, where results are cached (:mod:`sim.api.sweep`), how edge stress is judged."""
 
     file: str = key(Text())
     cache_dir: Any = key(Text(), optional=True)
@@ -320,7 +316,7 @@ def validate(cfg):
     ------
     ConfigError
         Listing every offending key as ``group.key = value is outside the allowed range: ...``,
-        and a load grid that cannot be formed (:func:`sim.cases.operating_points`).
+        and a load grid that cannot be formed (:func:`sim.api.cases.operating_points`).
     """
     bearing_type = OmegaConf.select(cfg, "bearing.type")
     problems = [p for group, schema in SCHEMAS.items()

@@ -6,7 +6,7 @@ a LAPACK round trip and allocates nothing but the work copy.
 """
 import numpy as np
 
-from sim._jit import kernel
+from sim._math.jit import kernel
 
 
 @kernel

@@ -19,7 +19,7 @@ the two disks, so the penetration is the larger of the two arcs' penetrations).
 """
 import numpy as np
 
-from sim._jit import kernel
+from sim._math.jit import kernel
 from sim.geometry import RACE_LENS, RACE_LINE  # noqa: F401  (profile kinds, defined once)
 
 

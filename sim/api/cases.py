@@ -16,7 +16,8 @@ import itertools
 
 from omegaconf import ListConfig
 
-from sim.simulation import InputError, OperatingPoint
+from sim.api.bearing_model import OperatingPoint
+from sim.errors import InputError
 
 LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
 
@@ -64,11 +65,11 @@ def operating_points(load_cfg):
 
     Returns
     -------
-    list of sim.simulation.OperatingPoint
+    list of sim.api.simulation.OperatingPoint
 
     Raises
     ------
-    sim.simulation.InputError
+    sim.api.simulation.InputError
         Naming the key: a value that is no number or outside its range, zipped lists of
         unequal length, or a case that the grid holds twice.
     """

@@ -4,13 +4,13 @@ Viscosity-temperature: Ubbelohde-Walther, DIN 51563 / ASTM D341,
 ``log10(log10(nu + 0.7)) = A - B log10(T)`` with nu in mm^2/s and T in K, fitted through the
 points of the lubricant config (two points) or through one point with a given slope B.
 Density: linear in temperature. Pressure-viscosity: Barus or Roelands with the Barus coefficient
-as its initial slope (:func:`sim.ehl.pressure_viscosity`). Every parameter comes from ``conf/lubricant/*.yaml``.
+as its initial slope (:func:`sim.physics.ehl.pressure_viscosity`). Every parameter comes from ``conf/lubricant/*.yaml``.
 """
 from dataclasses import dataclass
 
 import numpy as np
 
-from sim.simulation import InputError
+from sim.errors import InputError
 
 #: Walther's constant [mm^2/s] (DIN 51563, ASTM D341).
 WALTHER_SHIFT = 0.7
@@ -31,7 +31,7 @@ class Lubricant:
     ``pressure_viscosity_model`` of the traction ('barus' or 'roelands'); limiting
     shear stress ``tau_L = limiting_shear_stress_0 + limiting_shear_coefficient p`` [MPa]; the
     elastic ``shear_modulus`` of the film [MPa] (Maxwell traction at low slip); the film's
-    ``thermal_conductivity`` [W/(m K)] (shear heating, :mod:`sim.friction`).
+    ``thermal_conductivity`` [W/(m K)] (shear heating, :mod:`sim.physics.friction`).
     """
 
     name: str

@@ -25,8 +25,8 @@ converges with the number of slices.
 """
 import numpy as np
 
-from sim._jit import kernel
-from sim.solvers.linalg import solve_dense
+from sim._math.jit import kernel
+from sim._math.linalg import solve_dense
 
 ELASTICITY_MODES = {"independent": 0, "coupled": 1}
 

@@ -1,34 +1,20 @@
-"""From a composed config to a result Dataset: validation, kernel inputs, solve, post-processing.
-
-``simulate(cfg)`` is the public entry point (re-exported as ``sim.simulate``). It validates
-every input before any numerics run, solves each load case with the quasi-static solver and
-hands plain arrays to :mod:`sim.io`, the only builder of Datasets.
+"""Kernel inputs of one bearing and one load case, the quasi-static solve of a case, and the
+DATA.md outputs derived from it (PyBaMM-style: the model holds parameters, the solver lives in
+:mod:`sim.solvers.quasi_static`, :mod:`sim.api.simulation` joins them).
 """
 import time
 from dataclasses import dataclass
 
 import numpy as np
-from omegaconf import OmegaConf
 
-from sim import ratings
-from sim.contact import contact_modulus, hertz_line_pressure
-from sim.elasticity import ELASTICITY_MODES, influence_matrix
+from sim.errors import InputError, check_range
 from sim.geometry import Geometry
-from sim.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
-from sim.solvers.quasi_static import solve_bearing
-
-
-class InputError(ValueError):
-    """Invalid load or solver input; the message names the key, its value and the allowed range."""
-
-
-def _check_range(name, value, low, high, low_open=False):
-    value = float(value)
-    ok = np.isfinite(value) and (value > low if low_open else value >= low) and value <= high
-    if not ok:
-        bracket = "(" if low_open else "["
-        raise InputError(f"{name} = {value!r} is outside the allowed range {bracket}{low}, {high}]")
-    return value
+from sim.physics import ratings
+from sim.physics.contact import contact_modulus, hertz_line_pressure
+from sim.physics.elasticity import ELASTICITY_MODES, influence_matrix
+from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
+from sim.solvers.quasi_static import (NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP, SP_RING_STEP,
+                                      SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST, solve_bearing)
 
 
 @dataclass(frozen=True)
@@ -43,11 +29,11 @@ class OperatingPoint:
 
     @classmethod
     def from_config(cls, load):
-        Fa = _check_range("load.Fa", load["Fa"], 0.0, 1e7, low_open=True)
-        Fr = _check_range("load.Fr", load["Fr"], 0.0, 1e7)
-        speed = _check_range("load.speed", load["speed"], 0.0, 1e5)
-        tilt = _check_range("load.tilt", load["tilt"], -2.0, 2.0)
-        temp = _check_range("load.oil_temperature", load.get("oil_temperature", 40.0), -40.0, 200.0)
+        Fa = check_range("load.Fa", load["Fa"], 0.0, 1e7, low_open=True)
+        Fr = check_range("load.Fr", load["Fr"], 0.0, 1e7)
+        speed = check_range("load.speed", load["speed"], 0.0, 1e5)
+        tilt = check_range("load.tilt", load["tilt"], -2.0, 2.0)
+        temp = check_range("load.oil_temperature", load.get("oil_temperature", 40.0), -40.0, 200.0)
         return cls(Fa, Fr, speed, tilt, temp)
 
 
@@ -90,12 +76,12 @@ class SolverSettings:
         n = solver["n_slices"]
         if not (isinstance(n, (int, np.integer)) and 2 <= int(n) <= 400):
             raise InputError(f"solver.n_slices = {n!r} is outside the allowed range [2, 400] (integer)")
-        tol = _check_range("solver.tolerance", solver["tolerance"], 1e-14, 1e-3, low_open=True)
-        mi = int(_check_range("solver.max_iterations", solver["max_iterations"], 1, 10000))
-        rmi = int(_check_range("solver.roller_max_iterations", solver["roller_max_iterations"], 1, 10000))
+        tol = check_range("solver.tolerance", solver["tolerance"], 1e-14, 1e-3, low_open=True)
+        mi = int(check_range("solver.max_iterations", solver["max_iterations"], 1, 10000))
+        rmi = int(check_range("solver.roller_max_iterations", solver["roller_max_iterations"], 1, 10000))
         extra = {}
         for key, (low, high, low_open, kind) in NEWTON_LIMITS.items():
-            extra[key] = kind(_check_range(f"solver.{key}", solver[key], low, high, low_open=low_open))
+            extra[key] = kind(check_range(f"solver.{key}", solver[key], low, high, low_open=low_open))
         return cls(int(n), el, tol, mi, rmi, bool(solver["centrifugal"]), bool(solver["gyroscopic"]), **extra)
 
 
@@ -139,7 +125,7 @@ class BearingModel:
         op : OperatingPoint
             The load case.
         roller_loads : array_like (Z, 3), optional
-            External generalised load on each roller (friction, :mod:`sim.friction`), in the
+            External generalised load on each roller (friction, :mod:`sim.physics.friction`), in the
             roller's own tilted frame (u' along its axis towards the large end, v' normal to
             it in its meridian plane, outwards to the outer ring) and added to the roller
             equilibrium like the body loads:
@@ -163,9 +149,6 @@ class BearingModel:
             solver_info (roller iterations, contact evaluations, ring backtracks, continuation
             steps).
         """
-        from sim.solvers.quasi_static import NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP, \
-            SP_RING_STEP, SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST
-
         g = self.geometry
         a = g.arrays
         s = self.settings
@@ -310,92 +293,3 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
         residual=raw["residual"],
     )
     return res
-
-
-def build_model(cfg):
-    """Validated :class:`BearingModel` of a composed config (bearing, material, solver)."""
-    settings = SolverSettings.from_config(cfg.solver)
-    geometry = Geometry.from_config(cfg.bearing, cfg.material, settings.n_slices)
-    if "slice_stiffness_iso16281" not in cfg.material:
-        raise InputError("material.slice_stiffness_iso16281 is missing (ISO/TS 16281 line-contact stiffness)")
-    return BearingModel(geometry, cfg.material, settings)
-
-
-def build_friction(cfg, model):
-    """Validated :class:`sim.friction.FrictionModel` of a composed config, or None when
-    ``friction.enabled`` is false (then no torque variable is written)."""
-    from sim.friction import FrictionModel
-    from sim.lubricant import Lubricant
-
-    if not bool(cfg.friction.enabled):
-        return None
-    if "surface" not in cfg.bearing:
-        raise InputError("bearing.surface is missing (roughness sigma and Zhou-Hoeprich B_ZH, C_ZH, thesis (5.16))")
-    return FrictionModel(model.geometry, model.E_star, Lubricant.from_config(cfg.lubricant), cfg.friction,
-                         cfg.bearing.surface, cfg.material)
-
-
-def solve_case(model, friction, op, output_cfg):
-    """Load distribution, then kinematics and friction of one case; DATA.md outputs (output units).
-
-    A case counts as converged only when both the load distribution and the traction
-    kinematics converged; otherwise only its status and the load-derived P, P0 are kept.
-    """
-    t0 = time.perf_counter()
-    raw = model.solve(op)
-    if friction is None or not raw["converged"]:
-        return case_results(model, op, raw, output_cfg)
-    fr = friction.evaluate(op, raw)
-    if fr["friction_converged"]:
-        # friction loads on the rollers (cage pocket) enter the load distribution; one
-        # fixed-point pass: they are 1e-3 of the contact loads, so a second pass changes the
-        # result below the solver tolerance
-        raw = model.solve(op, roller_loads=fr["roller_loads"])
-        fr = friction.evaluate(op, raw, start=fr["kinematics"]) if raw["converged"] else {"friction_converged": False}
-    res = case_results(model, op, raw, output_cfg)
-    if not (res["converged"] and fr.pop("friction_converged")):
-        return {key: res[key] for key in ("iterations", "wall_time", "P", "P0")} | {"converged": False}
-    fr.pop("roller_loads")
-    fr.pop("kinematics")
-    res.update(fr)
-    res["wall_time"] = time.perf_counter() - t0
-    return res
-    t0 = time.perf_counter()
-    fr = friction.evaluate(op, raw)
-    if fr["friction_converged"]:
-        # friction loads on the rollers (cage pocket) enter the load distribution; one
-        # fixed-point pass: they are 1e-3 of the contact loads, so a second pass changes the
-        # result below the solver tolerance
-        raw = model.solve(op, roller_loads=fr["roller_loads"])
-        res = case_results(model, op, raw, output_cfg)
-        fr = friction.evaluate(op, raw, start=fr["kinematics"]) if res["converged"] else {"friction_converged": False}
-    if not fr.pop("friction_converged"):
-        return {key: res[key] for key in ("iterations", "wall_time", "P", "P0")} | {"converged": False}
-    fr.pop("roller_loads")
-    fr.pop("kinematics")
-    res.update(fr)
-    res["wall_time"] += time.perf_counter() - t0
-    return res
-
-
-def simulate(cfg):
-    """Run the configured bearing through every load case of ``cfg.load``.
-
-    Parameters
-    ----------
-    cfg : omegaconf.DictConfig
-        Composed config (``sim.load_config``): bearing, material, lubricant, friction, load, solver, output.
-
-    Returns
-    -------
-    xarray.Dataset
-        The result following DATA.md, dims ``design`` (1) and ``case``.
-    """
-    from sim.cases import operating_points  # a grid of load cases (sim.cases imports this module)
-    from sim.io import build_dataset
-
-    model = build_model(cfg)
-    friction = build_friction(cfg, model)
-    ops = operating_points(cfg.load)
-    results = [solve_case(model, friction, op, cfg.output) for op in ops]
-    return build_dataset(model.geometry, ops, results, OmegaConf.to_yaml(cfg, resolve=True), model.settings)

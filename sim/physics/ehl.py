@@ -1,7 +1,7 @@
 """EHL film, mixed-friction load share and the local friction laws (MODEL.md 5; thesis 2.3, 5.4).
 
 Kernel units: mm, N, MPa, s; viscosity in MPa s (= 1e6 Pa s); velocities in mm/s. The reduced
-modulus of the EHL formulas is Hamrock's ``E' = 2 E*`` (E* of :func:`sim.contact.contact_modulus`).
+modulus of the EHL formulas is Hamrock's ``E' = 2 E*`` (E* of :func:`sim.physics.contact.contact_modulus`).
 
 - Line-contact film per slice: central film of Pan & Hamrock (1989) or the minimum film of
   Dowson & Higginson (thesis eq. (2.26)); point contact (roller end / rib): central film of
@@ -14,13 +14,13 @@ modulus of the EHL formulas is Hamrock's ``E' = 2 E*`` (E* of :func:`sim.contact
   combined smoothly as tau_lim tanh(k |v| / tau_lim).
 - Rolling resistance of the lubricant: Zhou & Hoeprich (1991) hydrodynamic rolling force of a
   line contact; of the material: elastic hysteresis (Johnson 1985, 9.2).
-- Shear heating of a contact (the thermal reduction of the traction, :mod:`sim.friction`):
+- Shear heating of a contact (the thermal reduction of the traction, :mod:`sim.physics.friction`):
   mid-film temperature rise of Couette heating, and the mean flash temperature of the surfaces
   under a moving band heat source (Jaeger 1942, Blok 1937 partition).
 """
 import numpy as np
 
-from sim._jit import kernel
+from sim._math.jit import kernel
 
 FILM_PAN_HAMROCK = 0
 FILM_DOWSON_HIGGINSON = 1

@@ -1,0 +1,28 @@
+"""The project's input errors (bottom layer: imported by every other layer, imports nothing).
+
+Every refusal names the parameter, its value and the allowed range or bound (STYLE.md).
+"""
+import math
+
+
+class InputError(ValueError):
+    """Invalid load, solver or friction input; the message names the key, its value and the allowed range."""
+
+
+class GeometryError(ValueError):
+    """Impossible bearing geometry; the message names the parameter, its value and the bound."""
+
+
+class ConfigError(ValueError):
+    """Config values outside their schema; the message names each key, value and allowed range."""
+
+
+def check_range(name, value, low, high, low_open=False):
+    """``float(value)`` if it lies in [low, high] (or (low, high] with ``low_open``), else InputError
+    naming ``name``, the value and the interval."""
+    value = float(value)
+    ok = math.isfinite(value) and (value > low if low_open else value >= low) and value <= high
+    if not ok:
+        bracket = "(" if low_open else "["
+        raise InputError(f"{name} = {value!r} is outside the allowed range {bracket}{low}, {high}]")
+    return value
