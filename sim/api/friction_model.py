@@ -13,7 +13,7 @@ from sim.physics.friction import (EV_FT, EV_P0, EV_TOUT, NC, NEV, NPAR, PAR_ALPH
                                   PAR_PV_MODEL, PAR_RHO_M, PAR_SIGMA, PAR_SIGMA_RIB, PAR_TAU0, PAR_THERMAL, PAR_V_S,
                                   PAR_Z, lubrication_state, roller_friction)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
-from sim.physics.roller_contact import contact_frames
+from sim.physics.roller_contact import contact_frames, empty_frames
 from sim.solvers.kinematics import solve_kinematics, solve_kinematics_newton
 
 
@@ -122,11 +122,7 @@ class FrictionModel:
         par[PAR_BETA] = float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature))
         par[PAR_Z] = roelands_index(eta0, par[PAR_ALPHA])
         par[PAR_DRAG_K] = self.drag_factor * float(self.lubricant.density(op.oil_temperature))
-        X = np.zeros((Z, 2, n, 2))
-        Nrm = np.zeros((Z, 2, n, 2))
-        Cen = np.zeros((Z, 2))
-        Ax = np.zeros((Z, 4))
-        Xrib = np.zeros((Z, 2))
+        X, Nrm, Cen, Ax, Xrib = empty_frames(Z, n)
         contact_frames(raw["poses"], raw["ring"], np.radians(op.tilt), g.alpha, g.Dpw, a["x"], a["rho"],
                        a["race_kind"], a["race_par"], a["rib"], X, Nrm, Cen, Ax, Xrib)
         q = raw["line_load"]

@@ -1,10 +1,24 @@
 """Contact frames of a solved roller set: contact points and normals of every slice, roller
 centres and axes, the roller-end / rib contact point (meridian plane of each roller, mm).
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim._math.jit import kernel
 from sim.physics.contact import roller_axes, slice_contact_meridian
+
+# Contact frames of Z rollers with N slices per raceway (a numba-supported named tuple of arrays):
+# X, Nrm (Z, 2, N, 2): contact points [mm] and unit normals into the ring, (r, z), race 0 outer,
+# 1 inner; Cen (Z, 2): roller centres [mm]; Ax (Z, 4): roller axes (u'_r, u'_z, v'_r, v'_z);
+# Xrib (Z, 2): roller-end / rib contact point [mm] (TRB only).
+ContactFrames = namedtuple("ContactFrames", ["X", "Nrm", "Cen", "Ax", "Xrib"])
+
+
+def empty_frames(Z, n):
+    """Zeroed :data:`ContactFrames` for Z rollers and n slices."""
+    return ContactFrames(np.zeros((Z, 2, n, 2)), np.zeros((Z, 2, n, 2)), np.zeros((Z, 2)), np.zeros((Z, 4)),
+                         np.zeros((Z, 2)))
 
 
 @kernel
