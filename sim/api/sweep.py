@@ -27,6 +27,7 @@ Command line: ``python -m sim.api.sweep collect DIR`` re-collects any sweep fold
 import argparse
 import copy
 import hashlib
+import itertools
 import json
 import logging
 import os
@@ -55,7 +56,7 @@ MANIFEST = "sweep.json"       # job list written before the first job
 FAILED = "failed.json"        # a job's error, written instead of its result
 SWEEP_FILE = "sweep.nc"       # the merged dataset
 NOT_IN_KEY = ("file", "cache_dir")  # output keys that say where to write, not what to compute
-BASIC_SWEEPER = "hydra._internal.core_plugins.basic_sweeper.BasicSweeper"
+BASIC_SWEEPER = "basic"       # the hydra/sweeper choice whose job list sweep_jobs forms
 
 
 # ------------------------------------------------------------------ cache keys and cached cases
@@ -218,13 +219,27 @@ def run_job(cfg, out_dir, job, overrides):
 
 # ------------------------------------------------------------------ the multirun around the jobs
 def sweep_jobs(config):
-    """Override lists of the jobs of a multirun, in job order, as Hydra's basic sweeper forms them."""
-    from hydra._internal.core_plugins.basic_sweeper import BasicSweeper
+    """Override lists of the jobs of a multirun, in job order, as Hydra's basic sweeper forms them.
+
+    Public Hydra API only (``OverridesParser``, ``Override``): the sweeper's ``params`` then the
+    command-line overrides, one column per key (a later override of a key replaces an earlier
+    one), each a discrete sweep's values or the single value; the jobs are the Cartesian product
+    of the columns, the last key varying fastest (Hydra's documented ``a=1,2 b=x,y`` order).
+    """
     from hydra.core.override_parser.overrides_parser import OverridesParser
 
     params = OmegaConf.select(config, "hydra.sweeper.params") or {}
     arguments = [f"{k}={v}" for k, v in params.items()] + list(config.hydra.overrides.task)
-    return BasicSweeper.split_arguments(OverridesParser.create().parse_overrides(arguments), None)[0]
+    columns = {}
+    for override in OverridesParser.create().parse_overrides(arguments):
+        key = override.get_key_element()
+        if not override.is_sweep_override():
+            columns[key] = [f"{key}={override.get_value_element_as_str()}"]
+        elif override.is_discrete_sweep():
+            columns[key] = [f"{key}={value}" for value in override.sweep_string_iterator()]
+        else:
+            raise ValueError(f"{key}: the basic sweeper does not support sweep type {override.value_type.name}")
+    return [list(job) for job in itertools.product(*columns.values())]
 
 
 def _kind(cfg):
@@ -292,8 +307,9 @@ class SweepCallback(Callback):
     def on_multirun_start(self, config, **kwargs):
         from hydra import compose
 
-        if config.hydra.sweeper._target_ != BASIC_SWEEPER:
-            log.warning("sweep: %s is not the basic sweeper; no job list, no collection", config.hydra.sweeper._target_)
+        sweeper = (OmegaConf.select(config, "hydra.runtime.choices") or {}).get("hydra/sweeper")
+        if sweeper != BASIC_SWEEPER:
+            log.warning("sweep: hydra/sweeper=%s is not the basic sweeper; no job list, no collection", sweeper)
             return
         jobs = sweep_jobs(config)
         configs, problems = [], []
