@@ -189,6 +189,7 @@ class LubricantConfig:
     limiting_shear_stress_0: Any = key(Number(0.0, 100.0, units="MPa"))
     shear_modulus: Any = key(Number(10.0, 1e5, units="MPa"))
     thermal_conductivity: Any = key(Number(0.01, 1.0, units="W/(m K)"))
+    eyring_stress: Any = key(Number(0.0, 100.0, low_open=True, units="MPa"))
 
 
 @dataclass

@@ -31,7 +31,9 @@ class Lubricant:
     ``pressure_viscosity_model`` of the traction ('barus' or 'roelands'); limiting
     shear stress ``tau_L = limiting_shear_stress_0 + limiting_shear_coefficient p`` [MPa]; the
     elastic ``shear_modulus`` of the film [MPa] (Maxwell traction at low slip); the film's
-    ``thermal_conductivity`` [W/(m K)] (shear heating, :mod:`sim.physics.friction`).
+    ``thermal_conductivity`` [W/(m K)] (shear heating, :mod:`sim.physics.friction`); the
+    ``eyring_stress`` tau_E0 [MPa] of the Maxwell-Eyring traction law
+    (:func:`sim.physics.ehl.traction_eyring`), None where the config has none.
     """
 
     name: str
@@ -46,6 +48,7 @@ class Lubricant:
     limiting_shear_coefficient: float
     shear_modulus: float
     thermal_conductivity: float
+    eyring_stress: float = None
 
     @classmethod
     def from_config(cls, lub):
@@ -111,7 +114,13 @@ class Lubricant:
         k = float(lub["thermal_conductivity"])
         if not 0.01 <= k <= 1.0:
             raise InputError(f"lubricant.thermal_conductivity = {k!r} is outside the allowed range [0.01, 1] W/(m K)")
-        return cls(str(lub["name"]), A, B, float(lub["density_temperature"]), rho, ds, alpha_p, pv_model, t0, c, G, k)
+        tau_E = lub.get("eyring_stress")
+        if tau_E is not None:
+            tau_E = float(tau_E)
+            if not 0.0 < tau_E <= 100.0:
+                raise InputError(f"lubricant.eyring_stress = {tau_E!r} is outside the allowed range (0, 100] MPa")
+        return cls(str(lub["name"]), A, B, float(lub["density_temperature"]), rho, ds, alpha_p, pv_model, t0, c, G, k,
+                   tau_E)
 
     def kinematic_viscosity(self, temperature):
         """nu [mm^2/s] at ``temperature`` [degC] (Ubbelohde-Walther, DIN 51563)."""
