@@ -83,8 +83,9 @@ TWIN_DISC = {"p_h": 1000.0, "temperature": 60.0,
 #: Entrainment speeds u [m/s]: the source's 2-16 m/s read as the sum velocity U1 + U2 (FZG convention; the
 #: literature file does not say which), i.e. u = 1-8 m/s.
 TWIN_DISC_U = (1.0, 2.0, 4.0, 8.0)
-SRR = np.concatenate([[0.0], np.geomspace(1e-4, 0.4, 40)])
-QUICK_SRR = np.array([0.0, 1e-3, 1e-2, 0.1, 0.4])
+TABLE_SRR = (0.001, 0.01, 0.05, 0.1, 0.4)   # 1, slide-to-roll ratios tabulated in the report
+SRR = np.unique(np.concatenate([[0.0], np.geomspace(1e-4, 0.4, 40), TABLE_SRR]))
+QUICK_SRR = np.array([0.0, *TABLE_SRR])
 
 FIGURE_DPI = 110
 
@@ -309,8 +310,8 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
     rig_Fa = max(rig_loads)
     cases = {f"TRB 32208, rig {rig_Fa / 1e3:g} kN": _pick(trb, "torque_component", Fa=rig_Fa),
              f"prototype TSRB, rig {rig_Fa / 1e3:g} kN": _pick(proto, "torque_component", Fa=rig_Fa),
-             f"{pin['trb']}, pinion": pin_trb.torque_component.isel(case=0).values,
-             f"{pin['tsrb']}, pinion": pin_tsrb.torque_component.isel(case=0).values}
+             f"{pin['trb']}, pinion {pin['Fa'] / 1e3:g} kN": pin_trb.torque_component.isel(case=0).values,
+             f"{pin['tsrb']}, pinion {pin['Fa'] / 1e3:g} kN": pin_tsrb.torque_component.isel(case=0).values}
     ds = ds.assign_coords(case=("case", list(cases), {"long_name": "bearing and load case of the breakdown"}))
     put("breakdown", ("case", "component"), list(cases.values()), "N*mm", "torque by component")
     put("breakdown_total", "case", [float(np.sum(v)) for v in cases.values()], "N*mm", "sum of the components")
@@ -496,8 +497,11 @@ def plot_breakdown(ds, out):
     fig = Figure(figsize=(11, 4.4), layout="constrained")
     axes = fig.subplots(1, 2)
     cases = list(ds.case.values)
-    for ax, sel, title in ((axes[0], cases[:2], "rig case (Fr = 0, 2000 rpm, FVA 3, 55 degC)"),
-                           (axes[1], cases[2:], "pinion case (Fr = 0, pinion oil)")):
+    pin = OmegaConf.create(ds.attrs["pinion_case"])
+    rig_title = (f"rig case (Fr = 0, {ds.attrs['rig_speed_rpm']:g} rpm, FVA 3 at "
+                 f"{ds.attrs['rig_oil_temperature_degC']:g} degC)")
+    pin_title = f"pinion case (Fr = {pin.Fr:g}, {pin.speed:g} rpm, {pin.lubricant} at {pin.oil_temperature:g} degC)"
+    for ax, sel, title in ((axes[0], cases[:2], rig_title), (axes[1], cases[2:], pin_title)):
         left = np.zeros(len(sel))
         for k, c in enumerate(ds.component.values):
             v = np.nan_to_num(ds.breakdown.sel(case=sel, component=c).values)
@@ -505,8 +509,12 @@ def plot_breakdown(ds, out):
             left += v
         for y, c in enumerate(sel):
             ax.text(left[y], y, f" {float(ds.torque_case.sel(case=c)):.0f}", va="center", fontsize=9)
-        ax.set(xlabel="frictional torque [N mm]", title=title, xlim=(0, 1.18 * max(left.max(), 1e-9)))
+        ax.set(xlabel="frictional torque [N mm]", xlim=(0, 1.18 * max(left.max(), 1e-9)))
+        ax.set_title(title, fontsize=10)
         ax.invert_yaxis()
+    axes[1].text(0.98, 0.5, f"TSRB / TRB: this model {_f(ds.ratio_pinion, '{:.2f}')}, "
+                            f"thesis {float(ds.ratio_pinion_thesis):.2f}", transform=axes[1].transAxes, ha="right",
+                 va="center", fontsize=9)
     fig.legend(*axes[0].get_legend_handles_labels(), loc="outside lower center", ncols=ds.sizes["component"],
                fontsize=9)
     return _save(fig, out, "torque_breakdown.png")
@@ -675,8 +683,7 @@ def write_report(ds, out, figures):
           "(none could be found in readable form; its header lists the figures to digitise), so only the model "
           "curves are plotted and the curve is not validated against a measurement here.\n")
     a(f"![traction curve]({figures['traction']})\n")
-    pick = [S for S in (0.001, 0.01, 0.05, 0.1, 0.4) if np.any(np.isclose(ds.srr.values, S, rtol=0.06))]
-    idx = [int(np.argmin(np.abs(ds.srr.values - S))) for S in pick]
+    idx = [int(np.argmin(np.abs(ds.srr.values - S))) for S in TABLE_SRR]
     rows = [[str(law), f"{u:g}", _f(ds.film_thickness_twin_disc.sel(u=u), "{:.3f}"),
              *[_f(ds.traction_coefficient.sel(law=law, u=u).isel(srr=i), "{:.4f}") for i in idx]]
             for law in ds.law.values for u in ds.u.values]
