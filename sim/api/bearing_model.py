@@ -16,6 +16,20 @@ from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_spe
 from sim.physics.roller_contact import BearingArrays, empty_frames
 from sim.solvers.quasi_static import BodyLoads, NewtonSettings, QuasiStaticProblem, RollerSet, solve_bearing
 
+# Start of the inner-ring displacement (BearingModel.initial_ring): the line-contact approach of
+# both raceway contacts of an equally loaded roller, 2 x (2 q / (pi E*)) x (ln(L/b) + 1/2 + ln 2)
+# (sim.physics.elasticity, Johnson 1985, Contact Mechanics, 4.3), with q the roller load over
+# half the roller length. ASSUMED: the log term taken as APPROACH_LOG_TERM = 8, at the top of its
+# values for the bearings here (5.3-7.3 at L/b 60-440), so that the start mostly lies beyond the
+# solution, where Newton on the stiffening contacts comes from above (0.8-3.4x the solved axial
+# displacement for tsrb_reference, tsrb_prototype and trb_32208 at 4.5-40 kN); its size is the
+# ring's length scale in sim.solvers.quasi_static.
+APPROACH_LOG_TERM = 8.0
+# Continuation fallback of BearingModel.solve (Allgower & Georg 2003): first increment of the
+# load parameter lam in [0, 1]; an accepted increment doubles, a failed one halves, down to
+# 1 / continuation_steps, and at most 2 x continuation_steps solves.
+CONTINUATION_FIRST_STEP = 0.25
+
 
 @dataclass(frozen=True)
 class OperatingPoint:
@@ -120,11 +134,12 @@ class BearingModel:
         return BodyLoads(float(Fc), float(Mg))
 
     def initial_ring(self, op: OperatingPoint):
-        """Start value of the inner-ring displacement: line-contact approach of an equal share (Johnson 4.3)."""
+        """Start value of the inner-ring displacement (delta_a, delta_r) [mm]: the line-contact
+        approach of an equal share of max(Fa, Fr) along the roller axis normal (APPROACH_LOG_TERM)."""
         g = self.geometry
         Q = max(op.Fa, op.Fr) / (g.Z * np.sin(g.alpha))
         q = Q / (0.5 * g.Lwe)
-        approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * 8.0
+        approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * APPROACH_LOG_TERM
         return np.array([approach / np.sin(g.alpha), 0.0])
 
     def solve(self, op: OperatingPoint, roller_loads=None):
@@ -198,7 +213,7 @@ class BearingModel:
             # solution the start of the next; a failed increment is halved from the last solution,
             # down to 1 / continuation_steps
             saved = None
-            lam, dlam = 0.0, 1.0 / 4.0
+            lam, dlam = 0.0, CONTINUATION_FIRST_STEP
             ring = self.initial_ring(OperatingPoint(op.Fa, 0.0, op.speed, 0.0, op.oil_temperature))
             ext[:] = 0.0
             ok = run(op.Fa, 0.0, 0.0, ring, False)
