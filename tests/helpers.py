@@ -44,23 +44,24 @@ def roller_residuals(model, raw, op, ext=None):
     poses and ring) + centrifugal force + gyroscopic moment + external load ``ext`` (Z, 3),
     over its loads [1]."""
     from sim.physics.contact import roller_axes
-    from sim.solvers.quasi_static import roller_state
+    from sim.physics.roller_contact import empty_roller_contact, roller_contact
 
     g = model.geometry
-    a = g.arrays
     body = model.body_loads(op)
     ext = np.zeros((g.Z, 3)) if ext is None else ext
     out = []
     for j in range(g.Z):
         psi = 2 * np.pi * j / g.Z
-        q = raw["line_load"][j].copy()
-        f, K, Q = np.zeros(5), np.zeros((5, 5)), np.zeros(4)
-        roller_state(raw["poses"][j].copy(), raw["ring"], np.radians(op.tilt) * np.cos(psi), np.cos(psi), g.alpha,
-                     g.Dpw, a["x"], a["rho"], a["w"], a["race_kind"], a["race_par"], a["R_eq"], model.C, model.E_star,
-                     model.mode, model.k_line, a["rib"], g.type == "TRB", q, q > 0, 1e-13, f, K, Q)
+        state = empty_roller_contact(g.n_slices)
+        state.pose[:] = raw["poses"][j]
+        state.q[:] = raw["line_load"][j]
+        state.active[:] = state.q > 0
+        roller_contact(raw["ring"], np.radians(op.tilt) * np.cos(psi), np.cos(psi), model.bearing, model.elasticity,
+                       state)
+        f, Q = state.f, state.Q
         if Q[0] + Q[1] == 0.0:
             continue  # unloaded roller, held by the cage
         ur, uz, vr, vz = roller_axes(g.alpha, raw["poses"][j, 2])
-        r = f[:3] + np.array([body[0] * ur, body[0] * vr, body[1]]) + ext[j]
+        r = f[:3] + np.array([body.centrifugal * ur, body.centrifugal * vr, body.gyroscopic]) + ext[j]
         out.append(max(abs(r[0]), abs(r[1]), abs(r[2]) / g.Lwe) / (Q[0] + Q[1] + Q[2]))
     return np.array(out)

@@ -1,12 +1,29 @@
-"""Small dense linear solves inside kernels (Gaussian elimination with partial pivoting).
+"""Small dense linear algebra inside kernels: solves (Gaussian elimination with partial
+pivoting) and element-wise copies.
 
 The systems of the slice model are small (at most a few hundred unknowns) and solved
 thousands of times per load case; an in-kernel elimination avoids the per-call overhead of
-a LAPACK round trip and allocates nothing but the work copy.
+a LAPACK round trip and allocates nothing but the work copy. The copies are explicit loops:
+no broadcasting machinery to compile.
 """
 import numpy as np
 
 from sim._math.jit import kernel
+
+
+@kernel
+def copy_vector(dst, src):
+    """dst[i] = src[i] for arrays of equal shape (N,)."""
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
+@kernel
+def copy_matrix(dst, src):
+    """dst[i, k] = src[i, k] for arrays of equal shape (N, M)."""
+    for i in range(dst.shape[0]):
+        for k in range(dst.shape[1]):
+            dst[i, k] = src[i, k]
 
 
 @kernel

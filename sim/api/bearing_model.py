@@ -12,10 +12,24 @@ from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
 from sim.physics.contact import contact_modulus, hertz_line_pressure
-from sim.physics.elasticity import ELASTICITY_MODES, influence_matrix
+from sim.physics.elasticity import ELASTICITY_MODES, SliceElasticity, influence_matrix
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
-from sim.solvers.quasi_static import (NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP, SP_RING_STEP,
-                                      SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST, solve_bearing)
+from sim.physics.roller_contact import BearingArrays, empty_frames
+from sim.solvers.quasi_static import BodyLoads, NewtonSettings, QuasiStaticProblem, RollerSet, solve_bearing
+
+# Start of the inner-ring displacement (BearingModel.initial_ring): the line-contact approach of
+# both raceway contacts of an equally loaded roller, 2 x (2 q / (pi E*)) x (ln(L/b) + 1/2 + ln 2)
+# (sim.physics.elasticity, Johnson 1985, Contact Mechanics, 4.3), with q the roller load over
+# half the roller length. ASSUMED: the log term taken as APPROACH_LOG_TERM = 8, at the top of its
+# values for the bearings here (5.3-7.3 at L/b 60-440), so that the start mostly lies beyond the
+# solution, where Newton on the stiffening contacts comes from above (0.8-3.4x the solved axial
+# displacement for tsrb_reference, tsrb_prototype and trb_32208 at 4.5-40 kN); its size is the
+# ring's length scale in sim.solvers.quasi_static.
+APPROACH_LOG_TERM = 8.0
+# Continuation fallback of BearingModel.solve (Allgower & Georg 2003): first increment of the
+# load parameter lam in [0, 1]; an accepted increment doubles, a failed one halves, down to
+# 1 / continuation_steps, and at most 2 x continuation_steps solves.
+CONTINUATION_FIRST_STEP = 0.25
 
 #: Keys of one load case, in the order of OperatingPoint's fields.
 LOAD_CASE_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
@@ -73,31 +87,42 @@ class BearingModel:
 
     def __init__(self, geometry: Geometry, material, settings: SolverSettings):
         self.geometry = g = geometry
-        self.settings = settings
+        self.settings = s = settings
         a = g.arrays
         self.E_star = contact_modulus(g.E, g.nu)
-        self.C = influence_matrix(a["x"], a["w"], self.E_star)
         # ISO/TS 16281: a roller with both raceway contacts in series carries
         # Q = c_L Lwe^(8/9) delta^(10/9); one contact takes half the approach, so its line
         # load is q = 2^(10/9) c_L Lwe^(-1/9) delta^(10/9).
-        self.k_line = 2.0 ** (10.0 / 9.0) * float(material["slice_stiffness_iso16281"]) * g.Lwe ** (-1.0 / 9.0)
-        self.mode = ELASTICITY_MODES[settings.elasticity]
+        k_line = 2.0 ** (10.0 / 9.0) * float(material["slice_stiffness_iso16281"]) * g.Lwe ** (-1.0 / 9.0)
+        self.elasticity = SliceElasticity(influence_matrix(a["x"], a["w"], self.E_star), float(self.E_star),
+                                          ELASTICITY_MODES[s.elasticity], float(k_line))
+        contiguous = np.ascontiguousarray
+        self.bearing = BearingArrays(contiguous(a["x"], dtype=float), contiguous(a["rho"], dtype=float), float(a["w"]),
+                                     contiguous(a["race_kind"], dtype=np.int64), contiguous(a["race_par"], dtype=float),
+                                     contiguous(a["R_eq"], dtype=float), contiguous(a["rib"], dtype=float),
+                                     float(g.alpha), float(g.Dpw), float(g.Lwe), int(g.Z), g.type == "TRB")
+        self.newton = NewtonSettings(float(s.tolerance), int(s.max_iterations), int(s.roller_max_iterations),
+                                     float(s.roller_tolerance_ratio), float(s.forcing),
+                                     float(s.roller_step_interference), float(s.roller_step_length),
+                                     int(s.line_search_halvings), float(s.ring_step_fraction))
 
     def body_loads(self, op: OperatingPoint):
-        """Centrifugal force [N] and gyroscopic moment [N mm] of a roller, rolling kinematics (2.20), (2.22)."""
+        """Body loads on a loaded roller, rolling kinematics (2.20), (2.22): BodyLoads(centrifugal
+        force m omega_c^2 Dpw/2 [N], gyroscopic moment I_x omega_R omega_c sin(alpha) [N mm])."""
         g = self.geometry
         omega_c = angular_speed(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))
         omega_r = angular_speed(roller_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))
         Fc = g.arrays["mass"] * omega_c**2 * 0.5 * g.Dpw if self.settings.centrifugal else 0.0
         Mg = g.arrays["inertia_axial"] * omega_r * omega_c * np.sin(g.alpha) if self.settings.gyroscopic else 0.0
-        return np.array([Fc, Mg, g.Lwe])
+        return BodyLoads(float(Fc), float(Mg))
 
     def initial_ring(self, op: OperatingPoint):
-        """Start value of the inner-ring displacement: line-contact approach of an equal share (Johnson 4.3)."""
+        """Start value of the inner-ring displacement (delta_a, delta_r) [mm]: the line-contact
+        approach of an equal share of max(Fa, Fr) along the roller axis normal (APPROACH_LOG_TERM)."""
         g = self.geometry
         Q = max(op.Fa, op.Fr) / (g.Z * np.sin(g.alpha))
         q = Q / (0.5 * g.Lwe)
-        approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * 8.0
+        approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * APPROACH_LOG_TERM
         return np.array([approach / np.sin(g.alpha), 0.0])
 
     def solve(self, op: OperatingPoint, roller_loads=None):
@@ -128,9 +153,11 @@ class BearingModel:
             line_load (Z, 2, N) [N/mm], pressure (Z, 2, N) [MPa], Q (Z, 2) [N], Q_rib (Z,) [N],
             rib_contact (Z, 4) (rib contact point (r, z) [mm] on the roller end and unit rib
             normal (r, z) into the rib in the roller's meridian plane; the rib load acts on the
-            roller along -normal; zeros for the TSRB), roller_loads (Z, 3) as applied, and
-            solver_info (roller iterations, contact evaluations, ring backtracks, continuation
-            steps).
+            roller along -normal; zeros for the TSRB), roller_loads (Z, 3) as applied, frames
+            (:data:`sim.physics.roller_contact.ContactFrames` of the Z rollers at the returned
+            poses when converged: slice contact points and normals, roller centres and axes,
+            roller-end / rib points), and solver_info (roller iterations, contact evaluations,
+            ring backtracks, continuation steps, roller classes solved).
         """
         g = self.geometry
         a = g.arrays
@@ -142,61 +169,45 @@ class BearingModel:
             ext = np.ascontiguousarray(roller_loads, dtype=float)
             if ext.shape != (g.Z, 3) or not np.all(np.isfinite(ext)):
                 raise InputError(f"roller_loads must be a finite array of shape ({g.Z}, 3), got shape {ext.shape}")
-        spar = np.empty(NSP)
-        spar[SP_TOL] = s.tolerance
-        spar[SP_MAX_ITER] = s.max_iterations
-        spar[SP_ROLLER_MAX_ITER] = s.roller_max_iterations
-        spar[SP_ROLLER_TOL_RATIO] = s.roller_tolerance_ratio
-        spar[SP_FORCING] = s.forcing
-        spar[SP_TRUST] = s.roller_step_interference
-        spar[SP_MAX_STEP] = s.roller_step_length
-        spar[SP_BACKTRACKS] = s.line_search_halvings
-        spar[SP_RING_STEP] = s.ring_step_fraction
-        body = self.body_loads(op)
-        poses = np.zeros((g.Z, 3))
-        q = np.zeros((g.Z, 2, n))
-        active = np.zeros((g.Z, 2, n), dtype=np.bool_)
-        Q = np.zeros((g.Z, 2))
-        Qrib = np.zeros(g.Z)
-        rib_contact = np.zeros((g.Z, 4))
-        info = np.zeros(9)
-        totals = np.zeros(3)  # roller iterations, contact evaluations, ring backtracks
+        problem = QuasiStaticProblem(self.bearing, self.elasticity, self.newton, self.body_loads(op))
+        rollers = RollerSet(np.zeros((g.Z, 3)), np.zeros((g.Z, 2, n)), np.zeros((g.Z, 2, n), dtype=np.bool_),
+                            np.zeros((g.Z, 2)), np.zeros(g.Z), np.zeros((g.Z, 4)), empty_frames(g.Z, n))
+        poses, q, active = rollers.poses, rollers.q, rollers.active
+        totals = np.zeros(3, dtype=np.int64)  # roller iterations, contact evaluations, ring backtracks
+        reports = []
 
         def run(Fa, Fr, tilt_rad, ring, warm):
-            info[0] = -1.0 if warm else 0.0
-            ok = solve_bearing(Fa, Fr, tilt_rad, body, ext, g.alpha, g.Dpw, g.Z, a["x"], a["rho"], a["w"],
-                               a["race_kind"], a["race_par"], a["R_eq"], self.C, self.E_star, self.mode,
-                               self.k_line, a["rib"], g.type == "TRB", spar, ring, poses, q, active, Q, Qrib,
-                               rib_contact, info)
-            totals[:] += info[5:8]
-            return bool(ok)
+            report = solve_bearing(Fa, Fr, tilt_rad, ext, problem, ring, rollers, warm)
+            totals[:] += (report.roller_iterations, report.contact_evaluations, report.ring_backtracks)
+            reports.append(report)
+            return bool(report.converged)
 
         ext_case = ext.copy()
-        tilt = np.radians(op.tilt)
+        tilt_rad = np.radians(op.tilt)  # op.tilt in degrees
         ring = self.initial_ring(op)
         t0 = time.perf_counter()
-        converged = run(op.Fa, op.Fr, tilt, ring, False)
-        iterations = int(info[0])
+        converged = run(op.Fa, op.Fr, tilt_rad, ring, False)
+        iterations = reports[-1].iterations
         steps = 1
-        if not converged and s.continuation_steps > 1 and (op.Fr > 0.0 or tilt != 0.0 or np.any(ext_case != 0.0)):
+        if not converged and s.continuation_steps > 1 and (op.Fr > 0.0 or tilt_rad != 0.0 or np.any(ext_case != 0.0)):
             # continuation (Allgower & Georg 2003, Introduction to Numerical Continuation Methods,
             # ch. 1): from the axisymmetric case (Fa alone, solved with the ring under load
             # control) to the case along lam in [0, 1] (Fr, tilt and roller loads times lam), each
             # solution the start of the next; a failed increment is halved from the last solution,
             # down to 1 / continuation_steps
             saved = None
-            lam, dlam = 0.0, 1.0 / 4.0
+            lam, dlam = 0.0, CONTINUATION_FIRST_STEP
             ring = self.initial_ring(OperatingPoint(op.Fa, 0.0, op.speed, 0.0, op.oil_temperature))
             ext[:] = 0.0
             ok = run(op.Fa, 0.0, 0.0, ring, False)
-            iterations += int(info[0])
+            iterations += reports[-1].iterations
             steps += 1
             while ok and lam < 1.0 and steps < 2 * s.continuation_steps:
                 saved = (lam, ring.copy(), poses.copy(), q.copy(), active.copy())
                 trial = min(1.0, lam + dlam)
                 ext[:] = trial * ext_case
-                ok = run(op.Fa, trial * op.Fr, trial * tilt, ring, True)
-                iterations += int(info[0])
+                ok = run(op.Fa, trial * op.Fr, trial * tilt_rad, ring, True)
+                iterations += reports[-1].iterations
                 steps += 1
                 if ok:
                     lam = trial
@@ -208,16 +219,19 @@ class BearingModel:
             converged = ok and lam == 1.0
             if not converged:
                 ext[:] = ext_case
-        wall = time.perf_counter() - t0
+        wall_time_s = time.perf_counter() - t0
         # Hertz pressure of every slice: the kernel's formula evaluated by numpy (py_func), so that
         # no array signature of it is compiled
         p0 = getattr(hertz_line_pressure, "py_func", hertz_line_pressure)
         pressure = np.where(q > 0.0, p0(np.maximum(q, 0.0), a["R_eq"][None, :, :], self.E_star), 0.0)
+        last = reports[-1]
         solver_info = dict(roller_iterations=int(totals[0]), contact_evaluations=int(totals[1]),
-                           ring_backtracks=int(totals[2]), continuation_steps=steps, roller_classes=int(info[8]))
-        return dict(converged=bool(converged), iterations=iterations, residual=info[1:3].copy(),
-                    wall_time=wall, ring=ring, poses=poses, line_load=q, pressure=pressure, Q=Q, Q_rib=Qrib,
-                    rib_contact=rib_contact, roller_loads=ext, solver_info=solver_info)
+                           ring_backtracks=int(totals[2]), continuation_steps=steps,
+                           roller_classes=int(last.roller_classes))
+        return dict(converged=bool(converged), iterations=int(iterations),
+                    residual=np.array([last.residual_axial, last.residual_radial]), wall_time=wall_time_s, ring=ring,
+                    poses=poses, line_load=q, pressure=pressure, Q=rollers.Q, Q_rib=rollers.Q_rib,
+                    rib_contact=rollers.rib_contact, roller_loads=ext, frames=rollers.frames, solver_info=solver_info)
 
 
 def roller_shift_relative_to_inner_ring(g, xi, ring, tilt):

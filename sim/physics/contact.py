@@ -22,6 +22,23 @@ import numpy as np
 from sim._math.jit import kernel
 from sim.geometry import RACE_LENS, RACE_LINE  # noqa: F401  (profile kinds, defined once)
 
+# Penetration [mm] of a contact that does not exist: below any real penetration (the start of a
+# running maximum; the rib row of a roller without a rib, which then never bounds a Newton step).
+NO_CONTACT = -np.inf
+
+# Newton on the angle around a slice circle (slice_contact_3d), numerical choices:
+# ANGLE_FD_STEP [rad]: step of the central differences; ~eps^(1/4) balances truncation and
+# round-off of a second difference (Press et al. 2007, Numerical Recipes, 5.7);
+# ANGLE_MAX_ITER: iteration cap (Newton from the meridian start converges in a few);
+# ANGLE_MAX_STEP [rad]: largest step, keeps a step taken far from the maximum near the start;
+# ANGLE_GRADIENT_STEP [rad]: fixed uphill step where the penetration is not locally concave;
+# ANGLE_TOL [rad]: converged when a step is below it (contact point to ~1e-12 rho).
+ANGLE_FD_STEP = 1e-4
+ANGLE_MAX_ITER = 30
+ANGLE_MAX_STEP = 0.2
+ANGLE_GRADIENT_STEP = 1e-2
+ANGLE_TOL = 1e-12
+
 
 @kernel
 def race_penetration(qr, qz, kind, par):
@@ -46,7 +63,7 @@ def race_penetration(qr, qz, kind, par):
     """
     if kind == RACE_LINE:
         return (qr - par[0]) * par[2] + (qz - par[1]) * par[3], par[2], par[3]
-    best = -1.0e300
+    best = NO_CONTACT
     nr = 0.0
     nz = 0.0
     for k in range(2):
@@ -195,13 +212,13 @@ def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kin
     e2x = axis[1] * e1z - axis[2] * e1y
     e2y = axis[2] * e1x - axis[0] * e1z
     e2z = axis[0] * e1y - axis[1] * e1x
-    h = 1e-4  # rad, finite-difference step of the angle Newton (second-order accurate)
+    h = ANGLE_FD_STEP
     for k in range(x.shape[0]):
         bx = center[0] + x[k] * axis[0]
         by = center[1] + x[k] * axis[1]
         bz = center[2] + x[k] * axis[2]
         t = 0.0
-        for it in range(30):
+        for it in range(ANGLE_MAX_ITER):
             fm = _pen_on_circle(t - h, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
                                 ring_origin, ring_axis, kind, par)
             f0 = _pen_on_circle(t, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
@@ -211,15 +228,15 @@ def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kin
             g1 = (fp - fm) / (2.0 * h)
             g2 = (fp - 2.0 * f0 + fm) / (h * h)
             if g2 >= 0.0:  # not a maximum locally: gradient step
-                step = 1e-2 * np.sign(g1)
+                step = ANGLE_GRADIENT_STEP * np.sign(g1)
             else:
                 step = -g1 / g2
-            if step > 0.2:
-                step = 0.2
-            elif step < -0.2:
-                step = -0.2
+            if step > ANGLE_MAX_STEP:
+                step = ANGLE_MAX_STEP
+            elif step < -ANGLE_MAX_STEP:
+                step = -ANGLE_MAX_STEP
             t += step
-            if abs(step) < 1e-12:
+            if abs(step) < ANGLE_TOL:
                 break
         c = np.cos(t)
         sn = np.sin(t)

@@ -23,12 +23,37 @@ For a uniformly loaded roller of length L the sum telescopes to
 (2 q/(pi E*)) (ln(L/b) + 1/2 + ln 2), independent of the slice width: the coupled model
 converges with the number of slices.
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim._math.jit import kernel
 from sim._math.linalg import solve_dense
 
-ELASTICITY_MODES = {"independent": 0, "coupled": 1}
+# solver.elasticity: independent slices (ISO/TS 16281) or elastically coupled slices
+INDEPENDENT, COUPLED = 0, 1
+ELASTICITY_MODES = {"independent": INDEPENDENT, "coupled": COUPLED}
+
+# Slice elasticity of one bearing for the kernels (a numba-supported named tuple):
+# C (N, N): off-diagonal influence numbers [mm per N/mm] (influence_matrix); E_star: contact
+# modulus [MPa]; mode: ELASTICITY_MODES value; k_line: line stiffness of independent slices
+# [N/mm per mm^(10/9)] (independent_slice_loads).
+SliceElasticity = namedtuple("SliceElasticity", ["C", "E_star", "mode", "k_line"])
+
+# Iteration caps of coupled_slice_loads: ACTIVE_SET_SWITCHES x (n + 1) passes of the active set
+# for n slices (each pass that does not end the solve releases or adds a slice: room for every
+# slice to switch a few times), NEWTON_MAX_ITER Newton iterations on one active set (the
+# deflections are smooth and nearly linear in the loads: a few suffice, the cap only stops a
+# stalled solve).
+ACTIVE_SET_SWITCHES = 4
+NEWTON_MAX_ITER = 60
+# Start of the line load from a self deflection (_load_from_self_deflection): the wide-strip
+# deflection u = (2 q / (pi E*)) (ln(w/b) + 1/2 + ln 2) with its log term taken as
+# WIDE_STRIP_LOG_START (w/b ~ 120), then SELF_DEFLECTION_FIXED_POINT_ITER fixed-point steps
+# q <- q u / u_self(q): u_self depends on q through ln(1/b) ~ -ln(q)/2 only, so each step divides
+# the error by ~10; the result only starts the Newton iteration.
+WIDE_STRIP_LOG_START = 6.0
+SELF_DEFLECTION_FIXED_POINT_ITER = 4
 
 
 def influence_matrix(x, w, E_star):
@@ -191,7 +216,7 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
                 q[k] = _load_from_self_deflection(d[k], w, R[k], E_star)
     idx = np.empty(n, dtype=np.int64)
     total = 0
-    for outer in range(4 * n + 4):
+    for outer in range(ACTIVE_SET_SWITCHES * (n + 1)):
         m = 0
         for k in range(n):
             if active[k]:
@@ -201,7 +226,7 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
         # Newton on the active set; a slice whose Newton step crosses zero load is released
         J = np.empty((m, m))
         F = np.empty(m)
-        for it in range(60):
+        for it in range(NEWTON_MAX_ITER):
             total += 1
             fmax = 0.0
             for a in range(m):
@@ -249,8 +274,8 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
 @kernel
 def _load_from_self_deflection(u, w, R, E_star):
     """Line load [N/mm] whose self deflection is u [mm] (fixed point on the slowly varying log)."""
-    q = u * np.pi * E_star / 12.0
-    for it in range(4):
+    q = u * np.pi * E_star / (2.0 * WIDE_STRIP_LOG_START)
+    for it in range(SELF_DEFLECTION_FIXED_POINT_ITER):
         us, dus = self_deflection(q, w, R, E_star)
         q = q * u / us
     return q

@@ -11,16 +11,10 @@ frame: the force along u' and along v' and the moment about its centre (about u'
 positive when it turns u' towards v'), so a Newton step is taken in the local chart
 y = (a, b, theta, delta_a, delta_r): a translation a u' + b v' of the roller centre (u', v'
 of the current tilt; :func:`_local_to_pose` turns it into xi, eta), the tilt and the ring.
-For a contact (slice or rib) with penetration d(y), G = dd/dy; the normal load Q acts on the
-roller as the generalised force -Q G (virtual work), and on the ring likewise. The tangent
-stiffness is the exact Jacobian K = -df/dy:
+The contact state of a roller at a pose (contact frames, slice and rib loads, the generalised
+forces f = -sum Q G, G = dd/dy of every contact, and the exact contact stiffness K = -df/dy) is
+:func:`sim.physics.roller_contact.roller_contact`. The solver adds:
 
-- material part: w G^T (dq/dd) G for slices (q line load, w slice width, dq/dd the tangent of
-  the slice elasticity on the loaded set) and dQ/dd g g^T for the rib;
-- geometric part: w sum_k q_k H_k with H_k the second derivative of the penetration: the
-  raceway curvature (t.dP/dy_a)(t.dP/dy_b)/r_c (t the profile tangent, r_c = PCR_LB of a
-  TSRB arc; zero for a straight TRB cone) plus n . d2P/dtheta2 = -n.(x u' + y v') of the
-  turning slice point P (and -c_x n.u' for the rib sphere centre);
 - the turning residual frame: d(F.u')/dtheta = F.v' and d(F.v')/dtheta = -F.u' of the
   total roller force F, which vanish at equilibrium except for the follower part of the
   external roller loads.
@@ -49,8 +43,8 @@ Solution strategy.
 - Axisymmetric case (no radial load, no tilt, equal roller loads): one roller, with the ring's
   axial displacement solved together with it under load control (the roller's share Fa / Z),
   so that a TSRB whose contact migrates to the roller edge keeps its load on the way.
-- :meth:`sim.api.simulation.BearingModel.solve` continues from the axisymmetric case in Fr, tilt
-  and roller loads when the direct solve fails.
+- :meth:`sim.api.bearing_model.BearingModel.solve` continues from the axisymmetric case in Fr,
+  tilt and roller loads when the direct solve fails.
 
 Body loads on a loaded roller: centrifugal force m omega_c^2 Dpw/2 along e_r and the
 gyroscopic moment I_x omega_R omega_c sin(alpha) (rigid-body dynamics of a roller spinning
@@ -62,34 +56,68 @@ their small centrifugal load on the outer ring is neglected and so is any extern
 them (documented simplification; the dynamic solver treats them fully).
 
 Iterative kernels return status flags instead of raising (STYLE.md); the wrapper in
-:mod:`sim.api.simulation` decides.
+:mod:`sim.api.bearing_model` decides. Kernels share state through named tuples (STYLE.md):
+:data:`QuasiStaticProblem` (bearing arrays, slice elasticity, Newton settings, body loads),
+:data:`RollerSet` (the rollers in and out), the roller's
+:data:`sim.physics.roller_contact.RollerContact`, :data:`RollerWork` and :data:`SolveReport`.
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim._math.jit import kernel
-from sim.physics.contact import roller_axes, slice_contact_meridian, hertz_point_load
-from sim.physics.elasticity import coupled_slice_loads, coupled_slice_compliance, independent_slice_loads
-from sim.geometry import RACE_LENS
-from sim._math.linalg import solve_dense
+from sim._math.linalg import copy_matrix, copy_vector
+from sim.physics.contact import roller_axes
+from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
+from sim.solvers.symmetry import symmetry_classes
 
-NY = 5  # generalised coordinates per roller block: a (along u'), b (along v'), theta, delta_a, delta_r
+# Newton settings of the kernels, from sim.api.bearing_model.SolverSettings under the same names
+# (conf/solver/quasi_static.yaml gives meaning, units and reasons): tolerance (relative force
+# residual), max_iterations (ring), roller_max_iterations, roller_tolerance_ratio, forcing,
+# roller_step_interference, roller_step_length (/ Lwe), line_search_halvings, ring_step_fraction.
+NewtonSettings = namedtuple("NewtonSettings", ["tolerance", "max_iterations", "roller_max_iterations",
+                                               "roller_tolerance_ratio", "forcing", "roller_step_interference",
+                                               "roller_step_length", "line_search_halvings", "ring_step_fraction"])
 
-# Solver parameters, packed for the kernels by sim.api.simulation.BearingModel from SolverSettings
-# (conf/solver/quasi_static.yaml); meaning and units there.
-(SP_TOL, SP_MAX_ITER, SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_FORCING, SP_TRUST, SP_MAX_STEP,
- SP_BACKTRACKS, SP_RING_STEP) = range(9)
-NSP = 9
+# Body loads on a loaded roller (module docstring): centrifugal force along e_r [N] and gyroscopic
+# moment about u' x v' [N mm].
+BodyLoads = namedtuple("BodyLoads", ["centrifugal", "gyroscopic"])
 
-# Per-roller contact summary written by _roller_state (aux): largest penetration of the outer
-# and the inner raceway [mm], rib penetration [mm], rib contact point (r, z) [mm] on the roller
-# end and the rib's unit normal (r, z) into the rib (the rib load acts on the roller along -n).
-AUX_DMAX_O, AUX_DMAX_I, AUX_DRIB, AUX_RIB_R, AUX_RIB_Z, AUX_RIB_NR, AUX_RIB_NZ = range(7)
-NAUX = 7
+# The fixed inputs of one quasi-static solve: sim.physics.roller_contact.BearingArrays,
+# sim.physics.elasticity.SliceElasticity, NewtonSettings, BodyLoads.
+QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", "settings", "body"])
 
-# Slice deflections are solved to at most this fraction of the roller's deepest penetration:
-# its loads are then accurate to ~1e-12 relative, 100x below the final roller tolerance
-# (solver.tolerance x roller_tolerance_ratio = 1e-10) also for a lightly loaded roller.
-DEFLECTION_TOL_REL = 1e-12
+# The rollers of a bearing, in and out of solve_bearing (Z rollers, N slices per raceway):
+# poses (Z, 3): xi [mm], eta [mm], theta [rad]; q, active (Z, 2, N): slice line loads [N/mm] and
+# loaded flags per race (0 outer, 1 inner); Q (Z, 2): roller-raceway loads [N]; Q_rib (Z,): rib
+# loads [N]; rib_contact (Z, 4): rib contact point (r, z) [mm] on the roller end and unit rib
+# normal (r, z) into the rib, in the roller's meridian plane (zeros without a rib or for a roller
+# not in equilibrium); frames: sim.physics.roller_contact.ContactFrames of the Z rollers.
+RollerSet = namedtuple("RollerSet", ["poses", "q", "active", "Q", "Q_rib", "rib_contact", "frames"])
+
+# What solve_bearing reports: converged; iterations (ring Newton iterations; axisymmetric case:
+# Newton iterations of the load-controlled roller); residual_axial, residual_radial: force
+# residual on the inner ring [N]; unconverged_classes and loaded_classes: roller classes without
+# equilibrium and loaded ones; roller_iterations (Newton), contact_evaluations (roller_contact
+# calls), ring_backtracks; roller_classes: rollers solved (sim.solvers.symmetry).
+SolveReport = namedtuple("SolveReport", ["converged", "iterations", "residual_axial", "residual_radial",
+                                         "unconverged_classes", "loaded_classes", "roller_iterations",
+                                         "contact_evaluations", "ring_backtracks", "roller_classes"])
+
+# Load control of one roller solve: Fa_share, the roller's share Fa / Z of the axial load [N]
+# with the ring's axial displacement a fourth unknown (axisymmetric case), 0 for a fixed ring;
+# ring_scale, the length scale of the ring displacement [mm] (its start estimate).
+LoadControl = namedtuple("LoadControl", ["Fa_share", "ring_scale"])
+
+# Work arrays of solve_roller (allocated once per bearing solve): the trial contact state and
+# ring; the residuals at the current, trial and best extended state; the step; the Jacobian and
+# its damped copy (NQ x NQ); the residual of the returned state (forces along u', v' [N], moment
+# [N mm] and the max-norm of the line search [N]).
+RollerWork = namedtuple("RollerWork", ["trial", "ring_trial", "R", "R_trial", "R_best", "step", "Kq", "K_lm",
+                                       "residual"])
+
+NQ = 4  # unknowns of a roller solve: a, b, theta, and delta_a under load control
+
 # Relative regularisation of the roller stiffness at round-off level (not a physical limit):
 # keeps a rigid-body direction that no contact resists solvable; the step bounds limit the move.
 REG = 1e-12
@@ -107,250 +135,10 @@ LM_TRIES = 7
 # wedge loses ~30 % of its load (and residual) per bounded step (Nocedal & Wright 2006,
 # Numerical Optimization, 3.5: extrapolation in a line search).
 EXTEND = 0.5
-
-
-@kernel
-def _roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                  mode, k_line, rib, has_rib, q, active, tol_d, f, K, Qout, Gout, aux):
-    """Contact loads, generalised forces and exact tangent stiffness of one roller (module docstring).
-
-    Parameters as :func:`roller_state`, and
-
-    Gout : ndarray (2 N + 1, 6)
-        dd/dy (columns 0..4) and the penetration d [mm] (column 5) of every slice (outer rows
-        0..N-1, inner N..2N-1) and of the rib (row 2N) (written).
-    aux : ndarray (NAUX,)
-        Contact summary (AUX_* indices) (written).
-
-    Returns
-    -------
-    bool
-        Whether every slice complementarity problem converged.
-    """
-    n = x.shape[0]
-    d = np.empty(n)
-    nrm = np.empty((n, 2))
-    pts = np.empty((n, 2))
-    dq = np.empty(n)
-    ur, uz, vr, vz = roller_axes(alpha, pose[2])
-    for a in range(NY):
-        f[a] = 0.0
-        for b in range(NY):
-            K[a, b] = 0.0
-    ok = True
-    dmax_sum = 0.0
-    T = np.empty(NY)
-    for s in range(2):
-        side = 1 - 2 * s
-        if s == 0:
-            slice_contact_meridian(x, rho, side, pose, alpha, Dpw, race_kind[0], race_par[0], 0.0, 0.0, 0.0,
-                                   d, nrm, pts)
-        else:
-            slice_contact_meridian(x, rho, side, pose, alpha, Dpw, race_kind[1], race_par[1],
-                                   ring[1] * cpsi, ring[0], phi, d, nrm, pts)
-        G = Gout[s * n:(s + 1) * n]
-        dmax = -1e300
-        for k in range(n):
-            if d[k] > dmax:
-                dmax = d[k]
-            y = side * rho[k]
-            G[k, NY] = d[k]
-            G[k, 0] = nrm[k, 0] * ur + nrm[k, 1] * uz
-            G[k, 1] = nrm[k, 0] * vr + nrm[k, 1] * vz
-            G[k, 2] = nrm[k, 0] * (x[k] * vr - y * ur) + nrm[k, 1] * (x[k] * vz - y * uz)
-            if s == 1:
-                G[k, 3] = -nrm[k, 1]
-                G[k, 4] = -nrm[k, 0] * cpsi
-            else:
-                G[k, 3] = 0.0
-                G[k, 4] = 0.0
-        aux[s] = dmax
-        dmax_sum += dmax
-        qs = q[s]
-        act = active[s]
-        # material stiffness w G^T (dq/dd) G on the loaded slices
-        if mode == 0:
-            independent_slice_loads(d, k_line, qs, dq)
-            for k in range(n):
-                act[k] = qs[k] > 0.0
-                if act[k]:
-                    for a in range(NY):
-                        for b in range(a, NY):
-                            K[a, b] += w * dq[k] * G[k, a] * G[k, b]
-        else:
-            # deflection tolerance: tol_d, and at most DEFLECTION_TOL_REL of the deepest
-            # penetration, so that lightly loaded rollers get the same relative accuracy
-            conv, its = coupled_slice_loads(d, C, w, R_eq[s], E_star, qs, act,
-                                            min(tol_d, DEFLECTION_TOL_REL * max(dmax, 0.0)))
-            ok = ok and conv
-            m = 0
-            for k in range(n):
-                if act[k]:
-                    m += 1
-            if m > 0:
-                # dq/dd = J^-1 on the loaded set (sim.physics.elasticity.coupled_slice_compliance)
-                Jfull = np.empty((n, n))
-                coupled_slice_compliance(C, w, R_eq[s], E_star, qs, act, Jfull)
-                idx = np.empty(m, dtype=np.int64)
-                m = 0
-                for k in range(n):
-                    if act[k]:
-                        idx[m] = k
-                        m += 1
-                Jm = np.empty((m, m))
-                Gm = np.empty((m, NY))
-                for a in range(m):
-                    for b in range(m):
-                        Jm[a, b] = Jfull[idx[a], idx[b]]
-                    for b in range(NY):
-                        Gm[a, b] = G[idx[a], b]
-                X = solve_dense(Jm, Gm)
-                for i in range(m):
-                    for a in range(NY):
-                        ga = w * Gm[i, a]
-                        for b in range(a, NY):
-                            K[a, b] += ga * X[i, b]
-        # forces and geometric stiffness of the loaded slices
-        Qs = 0.0
-        lens = race_kind[s] == RACE_LENS
-        for k in range(n):
-            if qs[k] <= 0.0:
-                continue
-            wq = w * qs[k]
-            Qs += wq
-            for a in range(NY):
-                f[a] -= wq * G[k, a]
-            y = side * rho[k]
-            # n . d2P/dtheta2 = -n . (x u' + y v')
-            K[2, 2] -= wq * (nrm[k, 0] * (x[k] * ur + y * vr) + nrm[k, 1] * (x[k] * uz + y * vz))
-            if lens:
-                # curvature of the raceway arc: (t . dP/dy)^2 / r_c, t = (-n_z, n_r), r_c = d + PCR_LB
-                tr = -nrm[k, 1]
-                tz = nrm[k, 0]
-                T[0] = tr * ur + tz * uz
-                T[1] = tr * vr + tz * vz
-                T[2] = tr * (x[k] * vr - y * ur) + tz * (x[k] * vz - y * uz)
-                if s == 1:
-                    T[3] = -tz
-                    T[4] = -tr * cpsi
-                else:
-                    T[3] = 0.0
-                    T[4] = 0.0
-                kap = wq / (d[k] + race_par[s, 4])
-                for a in range(NY):
-                    for b in range(a, NY):
-                        K[a, b] += kap * T[a] * T[b]
-        Qout[s] = Qs
-    Qout[3] = dmax_sum
-    # roller-end / rib contact (TRB): sphere (centre cx on the roller axis, radius R_end) on a plane
-    Qout[2] = 0.0
-    aux[AUX_DRIB] = 0.0
-    for a in range(NY + 1):
-        Gout[2 * n, a] = 0.0
-    Gout[2 * n, NY] = -1e300  # no rib
-    aux[AUX_RIB_R] = 0.0
-    aux[AUX_RIB_Z] = 0.0
-    aux[AUX_RIB_NR] = 0.0
-    aux[AUX_RIB_NZ] = 0.0
-    if has_rib:
-        cx = rib[0]
-        R_end = rib[2]
-        sa = np.sin(alpha)
-        ca = np.cos(alpha)
-        # nominal rib plane (ring coordinates): normal n0 and a point l0
-        n0r = rib[3] * sa + rib[4] * ca
-        n0z = -rib[3] * ca + rib[4] * sa
-        l0r = 0.5 * Dpw + cx * sa + R_end * n0r
-        l0z = -cx * ca + R_end * n0z
-        # current sphere centre, world then ring coordinates
-        cr = 0.5 * Dpw + pose[0] * sa + pose[1] * ca + cx * ur
-        cz = -pose[0] * ca + pose[1] * sa + cx * uz
-        tr = cr - ring[1] * cpsi
-        tz = cz - ring[0]
-        cp = np.cos(phi)
-        sp = np.sin(phi)
-        lr = cp * tr + sp * tz
-        lz = -sp * tr + cp * tz
-        drib = (lr - l0r) * n0r + (lz - l0z) * n0z + R_end
-        nwr = cp * n0r - sp * n0z
-        nwz = sp * n0r + cp * n0z
-        Qr, dQ = hertz_point_load(drib, R_end, E_star)
-        g = Gout[2 * n]
-        g[0] = nwr * ur + nwz * uz
-        g[1] = nwr * vr + nwz * vz
-        g[2] = cx * (nwr * vr + nwz * vz)
-        g[3] = -nwz
-        g[4] = -nwr * cpsi
-        for a in range(NY):
-            f[a] -= Qr * g[a]
-            for b in range(a, NY):
-                K[a, b] += dQ * g[a] * g[b]
-        # the sphere centre turns with the roller: n . d2c/dtheta2 = -cx n . u'
-        K[2, 2] -= Qr * cx * (nwr * ur + nwz * uz)
-        Qout[2] = Qr
-        g[NY] = drib
-        aux[AUX_DRIB] = drib
-        aux[AUX_RIB_R] = cr + R_end * nwr
-        aux[AUX_RIB_Z] = cz + R_end * nwz
-        aux[AUX_RIB_NR] = nwr
-        aux[AUX_RIB_NZ] = nwz
-    for a in range(NY):
-        for b in range(a):
-            K[a, b] = K[b, a]
-    return ok
-
-
-@kernel
-def roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                 mode, k_line, rib, has_rib, q, active, tol_d, f, K, Qout):
-    """Contact loads, generalised forces and tangent stiffness of one roller.
-
-    Parameters
-    ----------
-    pose : ndarray (3,)
-        xi [mm], eta [mm], theta [rad].
-    ring : ndarray (2,)
-        delta_a, delta_r of the inner ring [mm].
-    phi : float
-        Imposed inner-ring rotation in this meridian plane [rad] (tilt * cos(psi)).
-    cpsi : float
-        cos(psi) of the roller azimuth.
-    q, active : ndarray (2, N)
-        Line loads [N/mm] and loaded flags per race (0 outer, 1 inner): warm start in, result out.
-    f : ndarray (5,)
-        Generalised contact forces on the roller, along u', along v' [N], moment about its centre
-        [N mm] (0:3), and on the inner ring along +z and +x [N] (3:5) (written).
-    K : ndarray (5, 5)
-        Tangent stiffness -df/dy in the local chart of the module docstring [N/mm, N, N mm]
-        (written).
-    Qout : ndarray (4,)
-        Outer load, inner load, rib load [N], max interference outer + inner [mm] (written).
-
-    Returns
-    -------
-    bool
-        Whether every slice complementarity problem converged.
-    """
-    n = x.shape[0]
-    Gout = np.empty((2 * n + 1, NY + 1))
-    aux = np.empty(NAUX)
-    return _roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                         mode, k_line, rib, has_rib, q, active, tol_d, f, K, Qout, Gout, aux)
-
-
-@kernel
-def _copy1(dst, src):
-    """dst[i] = src[i] (equal shapes; explicit loop: no broadcasting machinery to compile)."""
-    for i in range(dst.shape[0]):
-        dst[i] = src[i]
-
-
-@kernel
-def _copy2(dst, src):
-    """dst[i, k] = src[i, k] (equal shapes; explicit loop: no broadcasting machinery to compile)."""
-    for i in range(dst.shape[0]):
-        for k in range(dst.shape[1]):
-            dst[i, k] = src[i, k]
+# Travel of a roller step [mm]: the largest of its centre's moves and its ends' move from the
+# tilt step, the tilt times the ends' distance from the centre, END_ARM x Lwe; an extended step
+# travels at most one roller length.
+END_ARM = 0.5
 
 
 @kernel
@@ -364,7 +152,7 @@ def _local_to_pose(pose, da, db, dth):
 
 
 @kernel
-def _kinematic_pose(ring, phi, cpsi, alpha, Dpw, has_rib, pose):
+def _kinematic_pose(ring, phi, cpsi, bearing, pose):
     """Start pose of a roller: rigid, midway between the rings (written to ``pose``).
 
     The inner-ring point at the nominal roller centre (Dpw/2, 0) moves by
@@ -373,24 +161,24 @@ def _kinematic_pose(ring, phi, cpsi, alpha, Dpw, has_rib, pose):
     the inner ring has a rib (the roller end stays on it) and half otherwise, and half of the
     ring rotation phi.
     """
-    r0 = 0.5 * Dpw
+    r0 = 0.5 * bearing.Dpw
     dr = r0 * (np.cos(phi) - 1.0) + ring[1] * cpsi
     dz = r0 * np.sin(phi) + ring[0]
-    sa = np.sin(alpha)
-    ca = np.cos(alpha)
+    sa = np.sin(bearing.alpha)
+    ca = np.cos(bearing.alpha)
     du = dr * sa - dz * ca
     dv = dr * ca + dz * sa
-    pose[0] = du if has_rib else 0.5 * du
+    pose[0] = du if bearing.has_rib else 0.5 * du
     pose[1] = 0.5 * dv
     pose[2] = 0.5 * phi
 
 
 @kernel
 def _solve_small(A, b, out, m):
-    """Solve the leading m x m block A[:m, :m] out[:m] = b[:m] (m <= 4) by Gaussian elimination
-    with partial pivoting, without allocation. Returns False when singular to working precision.
+    """Solve the leading m x m block A[:m, :m] out[:m] = b[:m] (m <= NQ) by Gaussian elimination
+    with partial pivoting on a small work copy. Returns False when singular to working precision.
     """
-    M = np.empty((4, 5))
+    M = np.empty((NQ, NQ + 1))
     for i in range(m):
         for j in range(m):
             M[i, j] = A[i, j]
@@ -423,39 +211,35 @@ def _solve_small(A, b, out, m):
 
 
 @kernel
-def _roller_residual(f, body, ext, theta, alpha, Lscale, R):
-    """Residual of one roller (contact + body + external loads) in its frame; returns the max-norm.
+def _roller_residual(f, theta, alpha, Lwe, body, ext, R):
+    """Residual of one roller (contact forces f at tilt theta + body + external loads) in its
+    frame; returns the max-norm.
 
-    R[0], R[1] forces along u', v' [N]; R[2] moment [N mm]; norm max(|R0|, |R1|, |R2| / Lscale) [N].
+    R[0], R[1] forces along u', v' [N]; R[2] moment [N mm]; norm max(|R0|, |R1|, |R2| / Lwe) [N].
     """
     ur, uz, vr, vz = roller_axes(alpha, theta)
-    R[0] = f[0] + body[0] * ur + ext[0]
-    R[1] = f[1] + body[0] * vr + ext[1]
-    R[2] = f[2] + body[1] + ext[2]
-    return max(abs(R[0]), abs(R[1]), abs(R[2]) / Lscale)
+    R[0] = f[0] + body.centrifugal * ur + ext[0]
+    R[1] = f[1] + body.centrifugal * vr + ext[1]
+    R[2] = f[2] + body.gyroscopic + ext[2]
+    return max(abs(R[0]), abs(R[1]), abs(R[2]) / Lwe)
 
 
 @kernel
-def _trial_pose(pose, t, p, trial, ring, ring_t, lc, q, active, qtmp, acttmp):
-    """Trial pose ``pose + t p`` (local chart) and ring (delta_a + t p[3] under load control),
-    with the slice loads of the current state as warm start (written to trial, ring_t, qtmp,
-    acttmp)."""
-    trial[0] = pose[0]
-    trial[1] = pose[1]
-    trial[2] = pose[2]
+def _trial_pose(pose, t, p, trial, ring, ring_t, lc):
+    """Trial pose ``pose + t p`` (local chart) and ring (delta_a + t p[3] under load control)
+    (written to trial and ring_t)."""
+    copy_vector(trial, pose)
     _local_to_pose(trial, t * p[0], t * p[1], t * p[2])
     ring_t[0] = ring[0] + t * p[3] if lc else ring[0]
     ring_t[1] = ring[1]
-    _copy2(qtmp, q)
-    _copy2(acttmp, active)
 
 
 @kernel
-def _trial_residual(f, body, ext, theta, alpha, Lscale, lc, Fa_share, R):
-    """Roller residual (R[0:3]) and, under load control, the ring's (R[3] = Fa_share + f[3]);
-    returns the max-norm [N] (moment / Lscale)."""
-    err = _roller_residual(f, body, ext, theta, alpha, Lscale, R)
-    if lc:
+def _trial_residual(f, theta, alpha, Lwe, body, ext, Fa_share, R):
+    """Roller residual (R[0:3]) and, under load control (Fa_share > 0), the ring's
+    (R[3] = Fa_share + f[3]); returns the max-norm [N] (moment / Lwe)."""
+    err = _roller_residual(f, theta, alpha, Lwe, body, ext, R)
+    if Fa_share > 0.0:
         R[3] = Fa_share + f[3]
         err = max(err, abs(R[3]))
     return err
@@ -478,7 +262,7 @@ def _roller_jacobian(K, R, ext, Lscale, Kq, m):
     m = 3: roller unknowns; m = 4: also delta_a, with the ring's axial residual as fourth row.
     The contact stiffness K plus the turning residual frame: R0 = F.u' + ext0 and
     R1 = F.v' + ext1 give dR0/dtheta += F.v' = R1 - ext1 and dR1/dtheta += -F.u' = -(R0 - ext0);
-    plus the round-off regularisation REG of the roller block.
+    plus the round-off regularisation REG of the roller block (Lscale = Lwe [mm]).
     """
     for a in range(m):
         for b in range(m):
@@ -492,50 +276,45 @@ def _roller_jacobian(K, R, ext, Lscale, Kq, m):
 
 
 @kernel
-def _bounded_step(Kq, R, m, Gout, aux, trust, max_len, Lscale, lc, ring, ring_frac, ring_scale, p):
+def _bounded_step(Kq, R, m, G, d, d_step, arm, max_len, ring_step, p):
     """Newton step Kq p = R (first m unknowns) and its bound factor c in (0, 1] (solve_roller).
 
-    c keeps the first-order change of the slice and rib penetrations within trust x the
-    roller's interference scale D (largest outer + inner + rib penetration): a penetrating
-    contact may lose at most trust D, any contact may gain at most its gap plus trust D (a
-    contact far from touching may close its gap). It keeps the roller travel within max_len
-    and, under load control, the ring travel within ring_frac x its displacement. Returns c,
-    or -1 when Kq is singular.
+    c keeps the first-order change G p of the contact penetrations d within d_step [mm]
+    (roller_step_interference x the roller's interference scale): a penetrating contact may lose
+    at most that, any contact may gain at most its gap plus that (a contact far from touching may
+    close its gap). It keeps the roller travel max(|p_a|, |p_b|, arm |p_theta|) within max_len
+    [mm] (arm: the roller ends' distance from its centre [mm]) and the ring travel |p[3]| within
+    ring_step [mm] (inf for a fixed ring, where p[3] = 0). Returns c, or -1 when Kq is singular.
     """
     if not _solve_small(Kq, R, p, m):
         return -1.0
-    dscale = aux[AUX_DMAX_O] + aux[AUX_DMAX_I] + max(aux[AUX_DRIB], 0.0)
     c = 1.0
-    for k in range(Gout.shape[0]):
+    for k in range(G.shape[0]):
         v = 0.0
         for a in range(m):
-            v += Gout[k, a] * p[a]
-        d = Gout[k, NY]
+            v += G[k, a] * p[a]
         if v > 0.0:
-            lim = trust * dscale + max(-d, 0.0)
-        elif d > 0.0:
-            lim = trust * dscale
+            lim = d_step + max(-d[k], 0.0)
+        elif d[k] > 0.0:
+            lim = d_step
         else:
             continue
         if abs(v) * c > lim:
             c = lim / abs(v)
-    travel = max(abs(p[0]), abs(p[1]), 0.5 * Lscale * abs(p[2]))
+    travel = max(abs(p[0]), abs(p[1]), arm * abs(p[2]))
     if c * travel > max_len:
         c = max_len / travel
-    if lc:
-        lim = ring_frac * max(abs(ring[0]), ring_scale)
-        if c * abs(p[3]) > lim:
-            c = lim / abs(p[3])
+    if c * abs(p[3]) > ring_step:
+        c = ring_step / abs(p[3])
     return c
 
 
 @kernel
-def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                 mode, k_line, rib, has_rib, q, active, tol, spar, Fa_share, ring_scale, f, K, Qout, Gout, aux, Rout):
+def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
     """Equilibrium of one roller (bounded Newton, honest line search), optionally load-controlled.
 
-    Fixed ring (``Fa_share <= 0``): the roller's (a, b, theta) balance its contact, body and
-    external loads at the given ring position. Load control (``Fa_share > 0``, the
+    Fixed ring (``control.Fa_share <= 0``): the roller's (a, b, theta) balance its contact, body
+    and external loads at the given ring position. Load control (``control.Fa_share > 0``, the
     axisymmetric case where every roller is alike): the ring's axial displacement ring[0] is a
     fourth unknown and Fa_share + f[3] = 0 (the roller's share of Fa on the ring) a fourth
     residual, so that a roller that can only balance far from its start (a TSRB whose contact
@@ -543,12 +322,12 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
     written back.
 
     Each Newton step (exact Jacobian, module docstring) is bounded (:func:`_bounded_step`): no
-    slice or rib penetration changes, to first order, by more than ``spar[SP_TRUST]`` times the
-    roller's interference scale (a contact away from touching may first close its gap), the
-    roller moves by at most ``spar[SP_MAX_STEP]`` Lwe and the ring by at most
-    ``spar[SP_RING_STEP]`` of its displacement. The step is then halved until the potential
-    energy falls by the Armijo fraction of its first-order decrease (the work of the residual
-    forces along the step, trapezoidal rule, :func:`_work`); without decrease, damped
+    slice or rib penetration changes, to first order, by more than roller_step_interference
+    times the roller's interference scale (a contact away from touching may first close its
+    gap), the roller moves by at most roller_step_length x Lwe and the ring by at most
+    ring_step_fraction of its displacement. The step is then halved until the potential energy
+    falls by the Armijo fraction of its first-order decrease (the work of the residual forces
+    along the step, trapezoidal rule, :func:`_work`); without decrease, damped
     Levenberg-Marquardt steps are tried. A full step that does not halve the residual is
     extended while the energy keeps falling: a roller that a wedge of misaligned rings pushes
     out of its contacts has no loaded equilibrium, it comes free and the cage holds it. A
@@ -558,105 +337,110 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
 
     Parameters
     ----------
-    pose : ndarray (3,)
-        xi [mm], eta [mm], theta [rad]: start in, result out.
     ring : ndarray (2,)
         delta_a, delta_r [mm] (delta_a solved and written under load control).
-    body : ndarray (3,)
-        Centrifugal force [N] (along e_r), gyroscopic moment [N mm], roller length Lwe [mm].
+    phi : float
+        Imposed inner-ring rotation in the roller's meridian plane [rad] (tilt * cos(psi)).
+    cpsi : float
+        cos(psi) of the roller azimuth psi.
     ext : ndarray (3,)
         External load on the roller: force along u' towards the large end [N], force along v'
         [N], moment about u' x v' (positive turning u' towards v') [N mm].
+    problem : QuasiStaticProblem
     tol : float
         Relative force tolerance of the roller (of its contact and body loads); under load
-        control the ring residual is held to spar[SP_TOL] Fa_share.
-    spar : ndarray (NSP,)
-        Solver parameters (SP_* indices).
-    Fa_share : float
-        Fa / Z [N] under load control, <= 0 for a fixed ring.
-    ring_scale : float
-        Length scale of the ring displacement [mm] (its start estimate): bounds ring steps and
-        pushes the ring on when nothing is squeezed (load control).
-    f, K, Qout, Gout, aux :
-        State at the returned pose (as :func:`_roller_state`), valid on entry is not required.
-    Rout : ndarray (4,)
-        Residual at the returned pose: forces along u', v' [N], moment [N mm], and the residual
-        max-norm used by the line search [N] (written when loaded, converged or not).
+        control the ring residual is held to settings.tolerance x Fa_share.
+    control : LoadControl
+    state : sim.physics.roller_contact.RollerContact
+        The roller: pose start in, result out; q, active warm start in; the contact state of the
+        returned pose out (need not be valid on entry).
+    work : RollerWork
+        Work arrays; ``work.residual`` is written with the residual at the returned pose when
+        the roller is loaded (converged or not).
 
     Returns
     -------
     (status, iterations, evaluations): status 1 converged and loaded, 2 unloaded (rigid
     clearance, or pushed free), 0 not converged; Newton iterations; contact-state evaluations.
     """
-    Lscale = body[2]
-    max_iter = int(spar[SP_ROLLER_MAX_ITER])
-    trust = spar[SP_TRUST]
-    max_len = spar[SP_MAX_STEP] * Lscale
-    nbt = int(spar[SP_BACKTRACKS])
-    ring_frac = spar[SP_RING_STEP]
-    tol_ring = spar[SP_TOL]
+    bearing = problem.bearing
+    elasticity = problem.elasticity
+    settings = problem.settings
+    body = problem.body
+    Lscale = bearing.Lwe
+    alpha = bearing.alpha
+    arm = END_ARM * Lscale
+    max_len = settings.roller_step_length * Lscale
+    trust = settings.roller_step_interference
+    max_iter = settings.roller_max_iterations
+    nbt = settings.line_search_halvings
+    tol_ring = settings.tolerance
+    Fa_share = control.Fa_share
     lc = Fa_share > 0.0
     m = 4 if lc else 3
-    n = x.shape[0]
-    R = np.empty(4)
-    Rt = np.empty(4)
-    Rb = np.empty(4)
-    p = np.zeros(4)
-    trial = np.empty(3)
-    ring_t = np.empty(2)
-    Kq = np.empty((4, 4))
-    Klm = np.empty((4, 4))
-    ftmp = np.empty(NY)
-    Ktmp = np.empty((NY, NY))
-    Qtmp = np.empty(4)
-    Gtmp = np.empty((2 * n + 1, NY + 1))
-    auxtmp = np.empty(NAUX)
-    qtmp = np.empty_like(q)
-    acttmp = np.empty_like(active)
+    pose = state.pose
+    f = state.f
+    Q = state.Q
+    depth = state.depth
+    trial = work.trial
+    ring_t = work.ring_trial
+    R = work.R
+    Rt = work.R_trial
+    Rb = work.R_best
+    p = work.step
+    p.fill(0.0)
+    Kq = work.Kq
+    Klm = work.K_lm
+    Rout = work.residual
 
     def try_step(t):
-        """Contact state of the pose a step t along p (into the *tmp arrays and trial, ring_t)."""
-        _trial_pose(pose, t, p, trial, ring, ring_t, lc, q, active, qtmp, acttmp)
-        return _roller_state(trial, ring_t, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                             mode, k_line, rib, has_rib, qtmp, acttmp, 1e-13, ftmp, Ktmp, Qtmp, Gtmp, auxtmp)
+        """Contact state of the pose a step t along p, with the slice loads of the current state
+        as warm start (into work.trial and work.ring_trial)."""
+        _trial_pose(pose, t, p, trial.pose, ring, ring_t, lc)
+        copy_matrix(trial.q, state.q)
+        copy_matrix(trial.active, state.active)
+        return roller_contact(ring_t, phi, cpsi, bearing, elasticity, trial)
+
+    def step_bound(K_step):
+        """_bounded_step with the roller's current interference scale and ring displacement."""
+        d_step = trust * (depth[0] + depth[1] + max(depth[2], 0.0))
+        ring_step = settings.ring_step_fraction * max(abs(ring[0]), control.ring_scale) if lc else np.inf
+        return _bounded_step(K_step, R, m, state.G, state.d, d_step, arm, max_len, ring_step, p)
     evals = 1
-    ok = _roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                       mode, k_line, rib, has_rib, q, active, 1e-13, f, K, Qout, Gout, aux)
+    ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
     for it in range(max_iter):
-        if Qout[3] <= 0.0:
+        if depth[0] + depth[1] <= 0.0:
             if not lc:
                 # rings do not squeeze this roller: unloaded, held by the cage
-                _release(f, K, q, active, Qout)
+                _release(f, state.K, state.q, state.active, Q)
                 return 2, it, evals
             # load control and nothing squeezed yet: push the ring along Fa by its length scale
-            ring[0] += max(abs(ring[0]), ring_scale)
+            ring[0] += max(abs(ring[0]), control.ring_scale)
             if ring[0] > Lscale:
                 return 0, it, evals  # moved by a roller length and still nothing carries the load
-            _kinematic_pose(ring, phi, cpsi, alpha, Dpw, has_rib, pose)
-            q.fill(0.0)
-            active.fill(False)
-            ok = _roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                               mode, k_line, rib, has_rib, q, active, 1e-13, f, K, Qout, Gout, aux)
+            _kinematic_pose(ring, phi, cpsi, bearing, pose)
+            state.q.fill(0.0)
+            state.active.fill(False)
+            ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
             evals += 1
             continue
-        if Qout[0] <= 0.0 or Qout[1] <= 0.0:
+        if Q[0] <= 0.0 or Q[1] <= 0.0:
             # touching one race only. If its loads (contact, body, external) press it onto that
             # race (along v' outwards onto the outer one, inwards onto the inner one), it rests
             # there and the other ring does not squeeze it: unloaded as far as the rings' balance
             # goes (its centrifugal load on the outer ring is neglected, module docstring).
             # Otherwise, or under load control, centre it along v between both races (rigid
             # interference balance).
-            _roller_residual(f, body, ext, pose[2], alpha, Lscale, R)
-            if not lc and ((Qout[1] <= 0.0 and R[1] >= 0.0) or (Qout[0] <= 0.0 and R[1] <= 0.0)):
-                _release(f, K, q, active, Qout)
+            _roller_residual(f, pose[2], alpha, Lscale, body, ext, R)
+            if not lc and ((Q[1] <= 0.0 and R[1] >= 0.0) or (Q[0] <= 0.0 and R[1] <= 0.0)):
+                _release(f, state.K, state.q, state.active, Q)
                 return 2, it, evals
-            pose[1] += 0.5 * (aux[AUX_DMAX_I] - aux[AUX_DMAX_O])
-            ok = _roller_state(pose, ring, phi, cpsi, alpha, Dpw, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                               mode, k_line, rib, has_rib, q, active, 1e-13, f, K, Qout, Gout, aux)
+            pose[1] += 0.5 * (depth[1] - depth[0])
+            ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
             evals += 1
             continue
-        err = _roller_residual(f, body, ext, pose[2], alpha, Lscale, R)
-        scale = Qout[0] + Qout[1] + Qout[2] + abs(body[0]) + abs(ext[0]) + abs(ext[1]) + abs(ext[2]) / Lscale
+        err = _roller_residual(f, pose[2], alpha, Lscale, body, ext, R)
+        scale = Q[0] + Q[1] + Q[2] + abs(body.centrifugal) + abs(ext[0]) + abs(ext[1]) + abs(ext[2]) / Lscale
         done = err <= tol * scale and ok
         merit = err
         if lc:
@@ -666,12 +450,12 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
         if done:
             _residual_out(R, merit, Rout)
             return 1, it, evals
-        _roller_jacobian(K, R, ext, Lscale, Kq, m)
-        c = _bounded_step(Kq, R, m, Gout, aux, trust, max_len, Lscale, lc, ring, ring_frac, ring_scale, p)
+        _roller_jacobian(state.K, R, ext, Lscale, Kq, m)
+        c = step_bound(Kq)
         if c <= 0.0:
             _residual_out(R, merit, Rout)
             return 0, it, evals
-        travel = max(abs(p[0]), abs(p[1]), 0.5 * Lscale * abs(p[2]))
+        travel = max(abs(p[0]), abs(p[1]), arm * abs(p[2]))
         # backtracking line search on the potential energy of the roller (and, under load
         # control, of the ring's load share): the work of the residual forces along the step,
         # by the trapezoidal rule from the residuals at both ends (exact for a quadratic
@@ -691,13 +475,13 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
             for ls in range(nbt + 1):
                 ok_t = try_step(t)
                 evals += 1
-                if Qtmp[3] <= 0.0:
+                if trial.depth[0] + trial.depth[1] <= 0.0:
                     if not lc:
                         free = True
                         accepted = True
                         break
                 else:
-                    merit_t = _trial_residual(ftmp, body, ext, trial[2], alpha, Lscale, lc, Fa_share, Rt)
+                    merit_t = _trial_residual(trial.f, trial.pose[2], alpha, Lscale, body, ext, Fa_share, Rt)
                     if _work(R, Rt, p, m, t) >= ARMIJO * t * slope:
                         accepted = True
                         break
@@ -713,7 +497,7 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
                         Klm[a, b] = Kq[a, b]
                     Klm[a, a] += mu * abs(Kq[a, a])
                 mu *= LM_FACTOR
-                t = _bounded_step(Klm, R, m, Gout, aux, trust, max_len, Lscale, lc, ring, ring_frac, ring_scale, p)
+                t = step_bound(Klm)
                 if t <= 0.0:
                     continue
                 slope = 0.0
@@ -723,13 +507,13 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
                     continue
                 ok_t = try_step(t)
                 evals += 1
-                if Qtmp[3] <= 0.0:
+                if trial.depth[0] + trial.depth[1] <= 0.0:
                     if not lc:
                         free = True
                         accepted = True
                         break
                     continue
-                merit_t = _trial_residual(ftmp, body, ext, trial[2], alpha, Lscale, lc, Fa_share, Rt)
+                merit_t = _trial_residual(trial.f, trial.pose[2], alpha, Lscale, body, ext, Fa_share, Rt)
                 if _work(R, Rt, p, m, t) >= ARMIJO * t * slope:
                     accepted = True
                     break
@@ -748,11 +532,11 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
                 try_step(t_try)
                 evals += 1
                 t = t_try
-                if Qtmp[3] <= 0.0:
+                if trial.depth[0] + trial.depth[1] <= 0.0:
                     if not lc:
                         free = True
                     break
-                _trial_residual(ftmp, body, ext, trial[2], alpha, Lscale, lc, Fa_share, Rt)
+                _trial_residual(trial.f, trial.pose[2], alpha, Lscale, body, ext, Fa_share, Rt)
                 if _work(Rb, Rt, p, m, t_try - t_best) <= 0.0:
                     break
                 t_best = t_try
@@ -762,23 +546,29 @@ def solve_roller(pose, ring, phi, cpsi, body, ext, alpha, Dpw, x, rho, w, race_k
                 t = t_best
                 ok_t = try_step(t)
                 evals += 1
-        pose[0] = trial[0]
-        pose[1] = trial[1]
-        pose[2] = trial[2]
+        # accept the trial state (a roller pushed free: its pose, no load)
+        copy_vector(pose, trial.pose)
+        copy_matrix(state.q, trial.q)
+        copy_matrix(state.active, trial.active)
+        copy_vector(f, trial.f)
+        copy_matrix(state.K, trial.K)
+        copy_vector(Q, trial.Q)
+        copy_vector(depth, trial.depth)
+        copy_matrix(state.G, trial.G)
+        copy_vector(state.d, trial.d)
+        copy_vector(state.rib_contact, trial.rib_contact)
+        for s in range(2):
+            copy_matrix(state.frames.X[s], trial.frames.X[s])
+            copy_matrix(state.frames.Nrm[s], trial.frames.Nrm[s])
+        copy_vector(state.frames.Cen, trial.frames.Cen)
+        copy_vector(state.frames.Ax, trial.frames.Ax)
+        copy_vector(state.frames.Xrib, trial.frames.Xrib)
         if free:
-            _release(f, K, q, active, Qout)
-            Qout[3] = Qtmp[3]
+            _release(f, state.K, state.q, state.active, Q)
             return 2, it + 1, evals
         ring[0] = ring_t[0]
-        _copy2(q, qtmp)
-        _copy2(active, acttmp)
-        _copy1(f, ftmp)
-        _copy2(K, Ktmp)
-        _copy1(Qout, Qtmp)
-        _copy2(Gout, Gtmp)
-        _copy1(aux, auxtmp)
         ok = ok_t
-    merit = _roller_residual(f, body, ext, pose[2], alpha, Lscale, R)
+    merit = _roller_residual(f, pose[2], alpha, Lscale, body, ext, R)
     if lc:
         merit = max(merit, abs(Fa_share + f[3]))
     _residual_out(R, merit, Rout)
@@ -795,7 +585,7 @@ def _residual_out(R, merit, Rout):
 
 
 @kernel
-def _release(f, K, q, active, Qout):
+def _release(f, K, q, active, Q):
     """State of a roller the rings do not squeeze: no load, no stiffness (the cage holds it)."""
     for a in range(NY):
         f[a] = 0.0
@@ -803,19 +593,19 @@ def _release(f, K, q, active, Qout):
             K[a, b] = 0.0
     q.fill(0.0)
     active.fill(False)
-    Qout[0] = 0.0
-    Qout[1] = 0.0
-    Qout[2] = 0.0
+    Q[0] = 0.0
+    Q[1] = 0.0
+    Q[2] = 0.0
 
 
 @kernel
-def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, race_par, R_eq, C, E_star,
-                  mode, k_line, rib, has_rib, spar, ring0, poses, q, active, Q, Qrib, rib_contact, info):
+def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     """Inner-ring equilibrium under Fa, Fr and an imposed tilt (Newton on the condensed stiffness).
 
-    Symmetry: roller j and Z - j are mirror images (same cos(psi), same phi) when their
-    external loads are equal, so only Z // 2 + 1 azimuth classes are solved; with no radial
-    load, no tilt and equal external loads on every roller, one roller is solved for all.
+    Symmetry (:func:`sim.solvers.symmetry.symmetry_classes`): roller j and Z - j are mirror
+    images (same cos(psi), same phi) when their external loads are equal, so only Z // 2 + 1
+    azimuth classes are solved; with no radial load, no tilt and equal external loads on every
+    roller, one roller is solved for all.
 
     Parameters
     ----------
@@ -823,85 +613,65 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
         Axial load along +z and radial load along +x on the inner ring [N].
     tilt : float
         Imposed inner-ring tilt about the y axis [rad].
-    body : ndarray (3,)
-        Centrifugal force [N], gyroscopic moment [N mm], length Lwe [mm] of a loaded roller.
     ext : ndarray (Z, 3)
         External load per roller, [along u' towards the large end N, along v' N, about u' x v'
         N mm] (:func:`solve_roller`).
-    spar : ndarray (NSP,)
-        Solver parameters (SP_* indices).
+    problem : QuasiStaticProblem
     ring0 : ndarray (2,)
         Start value of (delta_a, delta_r) [mm], not both zero: its size is the ring's length
         scale (BearingModel.initial_ring: the Hertz approach); the solution is written back.
-    poses : ndarray (Z, 3)
-        Roller poses xi [mm], eta [mm], theta [rad] (warm start in when ``info[0] < 0``,
-        solution out).
-    q, active : ndarray (Z, 2, N)
-        Slice line loads [N/mm] and loaded flags per roller and race (0 outer, 1 inner)
-        (warm start in with the poses, solution out).
-    Q : ndarray (Z, 2)
-        Roller-raceway loads [N] (written). Qrib : ndarray (Z,) rib loads [N] (written).
-    rib_contact : ndarray (Z, 4)
-        Rib contact point (r, z) [mm] on the roller end and unit rib normal (r, z) into the
-        rib, in the roller's meridian plane (zeros without a rib) (written).
-    info : ndarray (9,)
-        In: info[0] < 0 takes the given poses, q, active as a warm start (continuation).
-        Out: ring iterations (axisymmetric case: Newton iterations of the load-controlled
-        roller), force residual axial [N], radial [N], number of unconverged roller classes,
-        number of loaded roller classes, roller Newton iterations, roller contact-state
-        evaluations, ring backtracks, roller classes solved.
+    rollers : RollerSet
+        Poses, q and active are a warm start in when ``warm``; everything is written. The
+        frames are those of the last contact evaluation of each roller: of the returned poses
+        when converged.
+    warm : bool
+        Start from the given poses, q and active (continuation) instead of rigid poses.
 
     Returns
     -------
-    bool
-        converged.
+    SolveReport
     """
-    n = x.shape[0]
-    tol = spar[SP_TOL]
-    max_iter = int(spar[SP_MAX_ITER])
-    nbt = int(spar[SP_BACKTRACKS])
-    forcing = spar[SP_FORCING]
-    ring_frac = spar[SP_RING_STEP]
-    roller_tol_final = tol * spar[SP_ROLLER_TOL_RATIO]
-    Lscale = body[2]
-    warm = info[0] < 0.0
+    bearing = problem.bearing
+    settings = problem.settings
+    Z = bearing.Z
+    alpha = bearing.alpha
+    n = bearing.x.shape[0]
+    poses = rollers.poses
+    q = rollers.q
+    active = rollers.active
+    frames = rollers.frames
+    tol = settings.tolerance
+    max_iter = settings.max_iterations
+    nbt = settings.line_search_halvings
+    forcing = settings.forcing
+    ring_frac = settings.ring_step_fraction
+    roller_tol_final = tol * settings.roller_tolerance_ratio
+    Lscale = bearing.Lwe
     # azimuth classes
-    mirror = True
-    equal = True
-    for j in range(Z):
-        for a in range(3):
-            if ext[j, a] != ext[(Z - j) % Z, a]:
-                mirror = False
-            if ext[j, a] != ext[0, a]:
-                equal = False
-    axisym = Fr == 0.0 and tilt == 0.0 and equal
-    if axisym:
-        nz = 1
-    elif mirror:
-        nz = Z // 2 + 1
-    else:
-        nz = Z
-    mult = np.empty(nz)
-    for j in range(nz):
-        if axisym:
-            mult[j] = float(Z)
-        elif mirror and j > 0 and 2 * j != Z:
-            mult[j] = 2.0
-        else:
-            mult[j] = 1.0
+    nz, mult, source = symmetry_classes(Z, Fr, tilt, ext)
+    axisym = nz == 1
     ring = ring0.copy()
     # length scale of the ring: the start estimate (an approach), or the current displacement
     ring_scale = max(abs(ring0[0]), abs(ring0[1]))
+    # contact state of the roller being solved (its pose, slice loads and frames: views into rollers)
     f = np.empty(NY)
     K = np.empty((NY, NY))
-    Qo = np.empty(4)
-    Gout = np.empty((2 * n + 1, NY + 1))
-    aux = np.empty(NAUX)
-    Rq = np.empty(4)
+    Qc = np.empty(3)
+    depth = np.empty(3)
+    G = np.empty((2 * n + 1, NY))
+    dpen = np.empty(2 * n + 1)
+    ribc = np.empty(4)
+    trial = RollerContact(np.empty(3), np.empty((2, n)), np.empty((2, n), dtype=np.bool_), np.empty(NY),
+                          np.empty((NY, NY)), np.empty(3), np.empty(3), np.empty((2 * n + 1, NY)), np.empty(2 * n + 1),
+                          np.empty(4), ContactFrames(np.empty((2, n, 2)), np.empty((2, n, 2)), np.empty(2), np.empty(4),
+                                                     np.empty(2)))
+    work = RollerWork(trial, np.empty(2), np.empty(NQ), np.empty(NQ), np.empty(NQ), np.empty(NQ), np.empty((NQ, NQ)),
+                      np.empty((NQ, NQ)), np.empty(NQ))
+    Rq = work.residual
     n3 = Rq.shape[0] - 1  # the roller's unknowns, a run-time value: one signature of the small solvers
-    Kq = np.empty((4, 4))
-    col = np.empty(4)
-    xcol = np.empty(4)
+    Kq = np.empty((NQ, NQ))
+    col = np.empty(NQ)
+    xcol = np.empty(NQ)
     Fscale = max(Fa, Fr)
     status = np.full(nz, -1, dtype=np.int64)  # -1: no state yet
     if warm:
@@ -941,6 +711,8 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
     roller_evals = 0
     nbad = 0
     nload = 0
+    residual_axial = 0.0
+    residual_radial = 0.0
     Fa_share = 0.0
     if axisym:
         # every roller alike: one roller, with the ring's axial displacement solved with it under
@@ -948,6 +720,7 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
         Fa_share = Fa / Z
         ring[1] = 0.0
         roller_tol = roller_tol_final
+    control = LoadControl(Fa_share, ring_scale)
     for it_ring in range(max_iter):
         Fres[0] = Fa
         Fres[1] = Fr
@@ -966,35 +739,35 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
             if status[j] != 1 and status[j] != 3:
                 # no valid state: rigid kinematic pose, plus the deviation of the neighbour solved
                 # just before (warm start of its slice loads too)
-                _kinematic_pose(ring, phi, cpsi, alpha, Dpw, has_rib, kin)
+                _kinematic_pose(ring, phi, cpsi, bearing, kin)
                 if j > 0 and status[j - 1] == 1:
                     cprev = np.cos(2.0 * np.pi * (j - 1) / Z)
-                    _kinematic_pose(ring, tilt * cprev, cprev, alpha, Dpw, has_rib, kin_prev)
+                    _kinematic_pose(ring, tilt * cprev, cprev, bearing, kin_prev)
                     for a in range(3):
                         poses[j, a] = kin[a] + poses[j - 1, a] - kin_prev[a]
-                    _copy2(q[j], q[j - 1])
-                    _copy2(active[j], active[j - 1])
+                    copy_matrix(q[j], q[j - 1])
+                    copy_matrix(active[j], active[j - 1])
                 else:
                     for a in range(3):
                         poses[j, a] = kin[a]
                     q[j].fill(0.0)
                     active[j].fill(False)
-            st, its, nev = solve_roller(poses[j], ring, phi, cpsi, body, ext[j], alpha, Dpw, x, rho, w, race_kind,
-                                        race_par, R_eq, C, E_star, mode, k_line, rib, has_rib, q[j], active[j],
-                                        roller_tol, spar, Fa_share, ring_scale, f, K, Qo, Gout, aux, Rq)
+            state = RollerContact(poses[j], q[j], active[j], f, K, Qc, depth, G, dpen, ribc,
+                                  ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j], frames.Xrib[j]))
+            st, its, nev = solve_roller(ring, phi, cpsi, ext[j], problem, roller_tol, control, state, work)
             roller_its += its
             roller_evals += nev
             status[j] = st
-            Q[j, 0] = Qo[0]
-            Q[j, 1] = Qo[1]
-            Qrib[j] = Qo[2]
+            rollers.Q[j, 0] = Qc[0]
+            rollers.Q[j, 1] = Qc[1]
+            rollers.Q_rib[j] = Qc[2]
             for a in range(4):
-                rib_contact[j, a] = aux[AUX_RIB_R + a] if st == 1 else 0.0
+                rollers.rib_contact[j, a] = ribc[a] if st == 1 else 0.0
             X[j].fill(0.0)
             zc[j].fill(0.0)
             if st == 0:
                 nbad += 1
-                if Qo[3] > 0.0:
+                if depth[0] + depth[1] > 0.0:
                     # kept as an inexact state if the ring residual allows (below)
                     fail_sum += mult[j] * Rq[3]
                     for a in range(2):
@@ -1002,7 +775,7 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
             if st != 1:
                 continue
             nload += 1
-            load_sum += mult[j] * (Qo[0] + Qo[1] + Qo[2])
+            load_sum += mult[j] * (Qc[0] + Qc[1] + Qc[2])
             # condensation (module docstring): X = K_qq^-1 K_qR, z = K_qq^-1 R_q,
             # Kc += K_RR - K_Rq X, ring residual += f_R - K_Rq z
             _roller_jacobian(K, Rq, ext[j], Lscale, Kq, n3)
@@ -1030,8 +803,8 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
             # the roller solve balanced the ring's axial load too (load control); delta_r = 0 by
             # symmetry, the radial sum of one roller class is not a residual
             converged = nbad == 0 and nload == 1
-            info[1] = Ftrue[0]
-            info[2] = 0.0
+            residual_axial = Ftrue[0]
+            residual_radial = 0.0
             it_ring = max(roller_its - 1, 0)  # reported: the roller's Newton iterations
             break
         err = max(abs(Fres[0]), abs(Fres[1]))
@@ -1043,7 +816,7 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
             err_with = max(abs(Fres[0] + Ffail[0]), abs(Fres[1] + Ffail[1]))
             if fail_sum <= forcing * err_with:
                 for j in range(nz):
-                    if status[j] == 0 and Q[j, 0] + Q[j, 1] > 0.0:
+                    if status[j] == 0 and rollers.Q[j, 0] + rollers.Q[j, 1] > 0.0:
                         status[j] = 3
                         n_inexact += 1
                 if n_inexact == nbad:
@@ -1058,8 +831,8 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
                         if status[j] == 3:
                             status[j] = 0
                     n_inexact = 0
-        info[1] = Ftrue[0]
-        info[2] = Ftrue[1]
+        residual_axial = Ftrue[0]
+        residual_radial = Ftrue[1]
         if nbad == 0 and err <= tol * Fscale:
             if roller_tol <= roller_tol_final and n_inexact == 0 and max(abs(Ftrue[0]), abs(Ftrue[1])) <= tol * Fscale:
                 converged = True
@@ -1084,8 +857,8 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
                 ring[a] = ring_acc[a] + t_ring * step[a]
             for j in range(nz):
                 status[j] = st_acc[j]
-                _copy2(q[j], q_acc[j])
-                _copy2(active[j], act_acc[j])
+                copy_matrix(q[j], q_acc[j])
+                copy_matrix(active[j], act_acc[j])
                 for a in range(3):
                     poses[j, a] = pose_acc[j, a]
                 if st_acc[j] == 1:
@@ -1103,11 +876,11 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
         err_acc = err
         for j in range(nz):
             st_acc[j] = status[j]
-            _copy1(pose_acc[j], poses[j])
-            _copy2(q_acc[j], q[j])
-            _copy2(act_acc[j], active[j])
-            _copy2(X_acc[j], X[j])
-            _copy1(z_acc[j], zc[j])
+            copy_vector(pose_acc[j], poses[j])
+            copy_matrix(q_acc[j], q[j])
+            copy_matrix(act_acc[j], active[j])
+            copy_matrix(X_acc[j], X[j])
+            copy_vector(z_acc[j], zc[j])
         ring_acc[0] = ring[0]
         ring_acc[1] = ring[1]
         # rollers for the next ring iterate: forcing x the ring residual expected there, from
@@ -1154,29 +927,25 @@ def solve_bearing(Fa, Fr, tilt, body, ext, alpha, Dpw, Z, x, rho, w, race_kind, 
     # results of the last state
     ring0[0] = ring[0]
     ring0[1] = ring[1]
-    info[0] = it_ring + 1
-    info[3] = nbad
-    info[4] = nload
-    info[5] = roller_its
-    info[6] = roller_evals
-    info[7] = n_backtracks
-    info[8] = nz
     # fill the rollers of the other azimuths from their classes
     for j in range(Z):
-        src = j
-        if axisym:
-            src = 0
-        elif mirror and j > Z // 2:
-            src = Z - j
+        src = source[j]
         if src != j:
             for a in range(3):
                 poses[j, a] = poses[src, a]
             for s in range(2):
-                Q[j, s] = Q[src, s]
+                rollers.Q[j, s] = rollers.Q[src, s]
                 for k in range(n):
                     q[j, s, k] = q[src, s, k]
                     active[j, s, k] = active[src, s, k]
-            Qrib[j] = Qrib[src]
+            rollers.Q_rib[j] = rollers.Q_rib[src]
             for a in range(4):
-                rib_contact[j, a] = rib_contact[src, a]
-    return converged
+                rollers.rib_contact[j, a] = rollers.rib_contact[src, a]
+            for s in range(2):
+                copy_matrix(frames.X[j, s], frames.X[src, s])
+                copy_matrix(frames.Nrm[j, s], frames.Nrm[src, s])
+            copy_vector(frames.Cen[j], frames.Cen[src])
+            copy_vector(frames.Ax[j], frames.Ax[src])
+            copy_vector(frames.Xrib[j], frames.Xrib[src])
+    return SolveReport(converged, it_ring + 1, residual_axial, residual_radial, nbad, nload, roller_its, roller_evals,
+                       n_backtracks, nz)

@@ -90,3 +90,32 @@ def test_3d_kernel_equals_meridian_without_skew_and_loses_depth_with_skew(bearin
                 assert abs(d3[k] - best) < 1e-9
             # skew is a second-order effect on the penetration: |change| < phi^2 * Lwe
             assert np.all(np.abs(d3 - d_m) < skew**2 * g.Lwe)
+
+
+@pytest.mark.parametrize("overrides,Fa,Fr,tilt_deg", [
+    (["bearing=tsrb_reference"], 4500.0, 2000.0, 0.0),
+    (["bearing=trb_32208"], 4500.0, 2000.0, 0.0),
+    (["bearing=trb_32208"], 40000.0, 0.0, 0.0),
+    (["bearing=tsrb_prototype"], 4500.0, 2000.0, 0.25),
+    (["bearing=tsrb_reference", "solver.elasticity=independent"], 4500.0, 4000.0, 0.0),
+])
+def test_solver_frames_are_the_frames_of_the_returned_poses(overrides, Fa, Fr, tilt_deg):
+    """The contact frames that BearingModel.solve returns (raw["frames"], from the solver's contact
+    evaluations, mirrored or copied for the rollers that a symmetry class stands for) equal
+    contact_frames recomputed at the returned poses and ring (MODEL.md 3): points and centres
+    to 1e-12 Dpw, unit vectors to 1e-12 (round-off of cos(psi) of mirrored azimuths)."""
+    from sim.physics.roller_contact import contact_frames, empty_frames
+    from tests.helpers import case
+
+    model = build_model(sim.load_config(overrides))
+    g, a = model.geometry, model.geometry.arrays
+    op = case(Fa, Fr, tilt=tilt_deg)
+    raw = model.solve(op)
+    assert raw["converged"]
+    ref = empty_frames(g.Z, g.n_slices)
+    contact_frames(raw["poses"], raw["ring"], np.radians(tilt_deg), g.alpha, g.Dpw, a["x"], a["rho"],
+                   a["race_kind"], a["race_par"], a["rib"], *ref)
+    for name in ("X", "Cen", "Xrib"):
+        np.testing.assert_allclose(getattr(raw["frames"], name), getattr(ref, name), rtol=0, atol=1e-12 * g.Dpw)
+    for name in ("Nrm", "Ax"):
+        np.testing.assert_allclose(getattr(raw["frames"], name), getattr(ref, name), rtol=0, atol=1e-12)

@@ -12,9 +12,8 @@ import pytest
 
 from sim.physics.contact import roller_axes
 from sim.api.bearing_model import BearingModel, case_results
-from sim.solvers.quasi_static import (NAUX, NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP,
-                                      SP_RING_STEP, SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST,
-                                      _roller_state, solve_roller)
+from sim.physics.roller_contact import empty_roller_contact, roller_contact
+from sim.solvers.quasi_static import LoadControl, QuasiStaticProblem, RollerWork, solve_roller
 from tests.helpers import case, race_forces, roller_residuals
 
 PINION_PCR200 = ["bearing=tsrb_pinion", "bearing.PCR=200", "bearing.aPk=6.05", "bearing.kappa=0.99"]
@@ -96,7 +95,7 @@ def _system_balance(model, raw, op, ext):
             continue
         psi = 2 * np.pi * j / g.Z
         ur, uz, vr, vz = roller_axes(g.alpha, raw["poses"][j, 2])
-        Fr_j = ext[j, 0] * ur + ext[j, 1] * vr + body[0]
+        Fr_j = ext[j, 0] * ur + ext[j, 1] * vr + body.centrifugal
         Fx += Fr_j * np.cos(psi)
         Fz += ext[j, 0] * uz + ext[j, 1] * vz
     return Fx, Fz
@@ -191,30 +190,24 @@ def test_roller_kernel_reports_its_status_honestly(model_for):
     tolerance (1e-10 of the roller's loads)."""
     model, _ = model_for("bearing=tsrb_reference")
     g = model.geometry
-    a = g.arrays
     n = g.n_slices
     ring = np.array([0.04, 0.0])  # near the solved ring of Fa = 4.5 kN
     body = model.body_loads(case(4500.0))
-    s = model.settings
-    spar = np.zeros(NSP)
-    spar[SP_TOL], spar[SP_MAX_ITER], spar[SP_ROLLER_TOL_RATIO] = s.tolerance, s.max_iterations, s.roller_tolerance_ratio
-    spar[SP_FORCING], spar[SP_TRUST], spar[SP_MAX_STEP] = s.forcing, s.roller_step_interference, s.roller_step_length
-    spar[SP_BACKTRACKS], spar[SP_RING_STEP] = s.line_search_halvings, s.ring_step_fraction
-    for max_it, expected in ((1, 0), (s.roller_max_iterations, 1)):
-        spar[SP_ROLLER_MAX_ITER] = max_it
-        pose = np.array([0.0, 0.5 * 0.04 * np.sin(g.alpha), 0.0])
-        q, act = np.zeros((2, n)), np.zeros((2, n), dtype=np.bool_)
-        f, K, Q = np.zeros(5), np.zeros((5, 5)), np.zeros(4)
-        G, aux, R = np.zeros((2 * n + 1, 6)), np.zeros(NAUX), np.zeros(4)
-        st, its, nev = solve_roller(pose, ring, 0.0, 1.0, body, np.zeros(3), g.alpha, g.Dpw, a["x"], a["rho"],
-                                    a["w"], a["race_kind"], a["race_par"], a["R_eq"], model.C, model.E_star,
-                                    model.mode, model.k_line, a["rib"], False, q, act, 1e-10, spar, 0.0, 0.04, f,
-                                    K, Q, G, aux, R)
-        assert st == expected and np.all(np.isfinite(pose))
-        f2, K2, Q2 = np.zeros(5), np.zeros((5, 5)), np.zeros(4)
-        _roller_state(pose, ring, 0.0, 1.0, g.alpha, g.Dpw, a["x"], a["rho"], a["w"], a["race_kind"], a["race_par"],
-                      a["R_eq"], model.C, model.E_star, model.mode, model.k_line, a["rib"], False, q.copy(),
-                      act.copy(), 1e-13, f2, K2, Q2, np.zeros((2 * n + 1, 6)), np.zeros(NAUX))
-        np.testing.assert_allclose(f2, f, rtol=1e-9, atol=1e-9 * Q[:2].sum())
+    for max_it, expected in ((1, 0), (model.newton.roller_max_iterations, 1)):
+        problem = QuasiStaticProblem(model.bearing, model.elasticity,
+                                     model.newton._replace(roller_max_iterations=max_it), body)
+        work = RollerWork(empty_roller_contact(n), np.zeros(2), np.zeros(4), np.zeros(4), np.zeros(4), np.zeros(4),
+                          np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4))
+        state = empty_roller_contact(n)
+        state.pose[:] = [0.0, 0.5 * 0.04 * np.sin(g.alpha), 0.0]
+        st, its, nev = solve_roller(ring, 0.0, 1.0, np.zeros(3), problem, 1e-10, LoadControl(0.0, 0.04), state, work)
+        assert st == expected and np.all(np.isfinite(state.pose))
+        check = empty_roller_contact(n)
+        check.pose[:] = state.pose
+        check.q[:] = state.q
+        check.active[:] = state.active
+        roller_contact(ring, 0.0, 1.0, model.bearing, model.elasticity, check)
+        np.testing.assert_allclose(check.f, state.f, rtol=1e-9, atol=1e-9 * state.Q[:2].sum())
         if st == 1:
-            assert R[3] <= 1e-10 * (Q[0] + Q[1] + abs(body[0]))
+            Q, R = state.Q, work.residual
+            assert R[3] <= 1e-10 * (Q[0] + Q[1] + abs(body.centrifugal))
