@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from xarray.indexes import PandasIndex
 
 from sim.physics import ratings
 from sim.physics.friction import COMPONENTS
@@ -77,12 +78,19 @@ def git_commit():
         return "unknown"
 
 
+@functools.lru_cache(maxsize=1)
 def package_version():
-    """Installed version of tsrb-workbench, or the source version when not installed."""
+    """Installed version of tsrb-workbench, or the source version when not installed (looked up
+    once per process: the metadata search costs about 0.5 ms)."""
     try:
         return metadata.version("tsrb-workbench")
     except metadata.PackageNotFoundError:
         return "0.1.0+source"
+
+
+def _var(dims, data, attrs):
+    """A Variable of ``data`` (converted as xarray would: ``np.asarray``)."""
+    return xr.Variable(dims, np.asarray(data), attrs)
 
 
 def _case_array(name, dims, results, sizes):
@@ -105,16 +113,94 @@ def utc_now():
     return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
 
 
+CASE_COORD_ATTRS = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
+                    "tilt": ("deg", "imposed inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
+
+
 def case_coords(ops):
     """Case coordinates (DATA.md) of a list of sim.api.simulation.OperatingPoint."""
-    attrs = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
-             "tilt": ("deg", "imposed inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
     return {name: ("case", [getattr(o, name) for o in ops], {"units": units, "long_name": long_name})
-            for name, (units, long_name) in attrs.items()}
+            for name, (units, long_name) in CASE_COORD_ATTRS.items()}
+
+
+SOURCES = ("thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004; ZhouHoeprich1991; PanHamrock1989; "
+           "HamrockDowson1977; BairWiner1979; JohnsonTevaarwerk1977")
+
+
+def provenance_attrs(title, config_yaml, settings):
+    """Dataset attributes (DATA.md provenance) of a result of the quasi-static solver."""
+    return {
+        "Conventions": "CF-1.10",
+        "title": title,
+        "package_version": package_version(),
+        "git_commit": git_commit(),
+        "config": config_yaml,
+        "solver": "quasi_static",
+        "solver_settings": str(settings),
+        "created": utc_now(),
+        "sources": SOURCES,
+    }
+
+
+def design_values(geometry):
+    """Design coordinates (DATA.md, :data:`DESIGN_COORDS`) of a geometry: name -> value."""
+    g = geometry
+    values = {"alpha": np.degrees(g.alpha), "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
+              "Lwe": g.Lwe, "Z": g.Z}
+    if g.type == "TSRB":
+        values.update(PCR=g.PCR, kappa=g.kappa, aP=g.aP, aPk=g.aPk, aA=g.aA, PCR_LB=g.PCR_LB)
+    return values
+
+
+RATING_ATTRS = {"C": {"units": "N", "long_name": "ISO 281 dynamic load rating (2.14)"},
+                "C0": {"units": "N", "long_name": "ISO 281 static load rating (2.10)"}}
+X_SLICE_ATTRS = {"units": "mm", "long_name": "slice centre from the large end"}
+
+
+def _dimension_coords(Z, n_slices):
+    """Index coordinates race, direction, component, roller, slice as (variables, indexes)."""
+    values = {
+        "race": (RACES, {"long_name": "raceway"}),
+        "direction": (["axial", "radial"], {"long_name": "inner-ring direction"}),
+        "component": (COMPONENTS, {"long_name": "friction loss mechanism"}),
+        "roller": (np.arange(Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
+        "slice": (np.arange(n_slices), {"long_name": "slice index from the large end", "units": "1"}),
+    }
+    variables, indexes = {}, {}
+    for name, (data, attrs) in values.items():
+        variable = {name: _var(name, data, attrs)}
+        index = PandasIndex.from_variables(variable, options={})
+        variables.update(index.create_variables(variable))
+        indexes[name] = index
+    return variables, indexes
+
+
+_DESIGN_PARTS = {}     # repr of a Geometry -> its dimension coordinates, design values and ratings
+_DESIGN_PARTS_SIZE = 256
+
+
+def _design_parts(geometry):
+    """What the Dataset of a geometry shares with every other of the same geometry, computed once:
+    the index coordinates (immutable, so they are shared), design values and (C, C0) [N]."""
+    key = repr(geometry)    # every field of the dataclass (arrays excluded: derived from the fields)
+    parts = _DESIGN_PARTS.get(key)
+    if parts is None:
+        g = geometry
+        C = ratings.dynamic_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha, g.b_m)
+        C0 = ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha)
+        parts = (*_dimension_coords(g.Z, g.n_slices), design_values(g), {"C": C, "C0": C0})
+        if len(_DESIGN_PARTS) >= _DESIGN_PARTS_SIZE:
+            _DESIGN_PARTS.pop(next(iter(_DESIGN_PARTS)))
+        _DESIGN_PARTS[key] = parts
+    return parts
 
 
 def build_dataset(geometry, ops, results, config_yaml, settings):
     """Assemble the DATA.md Dataset of one bearing (design dim of length 1) over its cases.
+
+    Every array is filled in numpy first and the Dataset is created once from Variables, with
+    the index coordinates of the geometry built once per geometry (a Dataset assembled from
+    tuples, with its indexes, costs several ms per call).
 
     Parameters
     ----------
@@ -127,6 +213,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     settings : sim.api.simulation.SolverSettings
     """
     g = geometry
+    index_vars, indexes, design, rating = _design_parts(g)
     sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 2, "component": len(COMPONENTS)}
     data = {}
     for name, (dims, units, long_name) in CASE_VARIABLES.items():
@@ -134,41 +221,18 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
             continue    # friction disabled: no torque variables, never placeholders
         arr = _case_array(name, dims, results, sizes)
         data[name] = xr.Variable(("design", "case") + dims, arr, {"units": units, "long_name": long_name})
-    C = ratings.dynamic_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha, g.b_m)
-    C0 = ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha)
-    data["C"] = xr.Variable(("design",), [C], {"units": "N", "long_name": "ISO 281 dynamic load rating (2.14)"})
-    data["C0"] = xr.Variable(("design",), [C0], {"units": "N", "long_name": "ISO 281 static load rating (2.10)"})
-    coords = {
-        "race": ("race", RACES, {"long_name": "raceway"}),
-        "direction": ("direction", ["axial", "radial"], {"long_name": "inner-ring direction"}),
-        "component": ("component", COMPONENTS, {"long_name": "friction loss mechanism"}),
-        "roller": ("roller", np.arange(g.Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
-        "slice": ("slice", np.arange(g.n_slices), {"long_name": "slice index from the large end", "units": "1"}),
-        "x_slice": ("slice", g.x_slice_from_large_end, {"units": "mm", "long_name": "slice centre from the large end"}),
-        **case_coords(ops),
-        "bearing_type": ("design", [g.type], {"long_name": "bearing type"}),
-    }
-    design_params = {"alpha": np.degrees(g.alpha), "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
-                     "Lwe": g.Lwe, "Z": g.Z}
-    if g.type == "TSRB":
-        design_params.update(PCR=g.PCR, kappa=g.kappa, aP=g.aP, aPk=g.aPk, aA=g.aA, PCR_LB=g.PCR_LB)
-    for name, value in design_params.items():
+    for name, value in rating.items():
+        data[name] = _var(("design",), [value], RATING_ATTRS[name])
+    coords = dict(index_vars)
+    coords["x_slice"] = _var("slice", g.x_slice_from_large_end, X_SLICE_ATTRS)
+    coords.update({name: _var(*value) for name, value in case_coords(ops).items()})
+    coords["bearing_type"] = _var("design", [g.type], {"long_name": "bearing type"})
+    for name, value in design.items():
         units, long_name = DESIGN_COORDS[name]
-        coords[name] = ("design", [value], {"units": units, "long_name": long_name})
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update({
-        "Conventions": "CF-1.10",
-        "title": f"{g.type} quasi-static load distribution and friction",
-        "package_version": package_version(),
-        "git_commit": git_commit(),
-        "config": config_yaml,
-        "solver": "quasi_static",
-        "solver_settings": str(settings),
-        "created": utc_now(),
-        "sources": ("thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004; ZhouHoeprich1991; PanHamrock1989; "
-                    "HamrockDowson1977; BairWiner1979; JohnsonTevaarwerk1977"),
-    })
-    return ds
+        coords[name] = _var("design", [value], {"units": units, "long_name": long_name})
+    title = f"{g.type} quasi-static load distribution and friction"
+    return xr.Dataset(data, coords=xr.Coordinates(coords, indexes=indexes),
+                      attrs=provenance_attrs(title, config_yaml, settings))
 
 
 def write_netcdf_atomic(ds, path):
