@@ -3,8 +3,22 @@
 ``simulate(cfg)`` is the public entry point (re-exported as ``sim.simulate``). It validates
 every input before any numerics run, solves each load case with the quasi-static solver and
 hands plain arrays to :mod:`sim.io`, the only builder of Datasets.
+
+Per-call overhead. A warm ``simulate`` of one combined case costs the physics (the load
+distribution twice and the traction kinematics) plus what surrounds it; that part is kept
+small by doing once per configuration what does not depend on the case:
+
+- the resolved config is read once per call (``OmegaConf.to_container``); its content
+  (``repr``) keys the caches (:data:`CACHE_SIZE` entries each), so equal content, in the same
+  object or a new one, reuses them and changed content (a new load, a mutated node) never does;
+- the provenance YAML (``OmegaConf.to_yaml``: the slow pure-Python YAML emitter) is kept per
+  top-level node: a call whose load alone changed (each case of a sweep) serialises its
+  ``load`` node only;
+- the bearing and friction models are kept per content of the nodes they read;
+- :func:`sim.io.build_dataset` creates the Dataset once from numpy arrays.
 """
 import time
+from collections import OrderedDict
 
 from omegaconf import OmegaConf
 
@@ -15,6 +29,9 @@ from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.io import build_dataset
 from sim.physics.lubricant import Lubricant
+
+CACHE_SIZE = 128                      # configurations whose YAML and models are kept
+MODEL_KEYS = ("bearing", "material", "solver", "friction", "lubricant")   # what build_model/build_friction read
 
 
 def build_model(cfg):
@@ -64,6 +81,84 @@ def solve_case(model, friction, op, output_cfg):
     return res
 
 
+# ------------------------------------------------------------------ per-configuration caches
+class _Cache:
+    """Least-recently-used mapping of at most ``size`` entries (one per configuration content)."""
+
+    def __init__(self, size):
+        self.size, self.data = size, OrderedDict()
+
+    def get(self, key, make):
+        if key in self.data:
+            self.data.move_to_end(key)
+            return self.data[key]
+        value = make()                 # an exception caches nothing
+        self.data[key] = value
+        if len(self.data) > self.size:
+            self.data.popitem(last=False)
+        return value
+
+    def clear(self):
+        self.data.clear()
+
+
+_YAML = _Cache(8 * CACHE_SIZE)  # repr of (top-level key, resolved node) -> its block of the YAML
+_MODELS = _Cache(CACHE_SIZE)    # repr of its MODEL_KEYS nodes -> (BearingModel, FrictionModel or None)
+
+
+def resolved(cfg):
+    """The resolved config as plain containers, as ``OmegaConf.to_yaml`` sees it."""
+    return OmegaConf.to_container(cfg, resolve=True, enum_to_str=True)
+
+
+def _yaml_block(key, value):
+    return OmegaConf.to_yaml(OmegaConf.create({key: value}))
+
+
+def config_yaml(cfg, plain=None):
+    """``OmegaConf.to_yaml(cfg, resolve=True)``, each top-level node serialised once per content.
+
+    ``plain``: :func:`resolved` of ``cfg`` when the caller has it. ``to_yaml`` dumps exactly
+    that container, a block-style mapping whose top-level entries follow each other, each a
+    block of its own that depends on its key and node only; a block is serialised on the first
+    call with its content (``repr`` tells apart every difference in value, type, 17 and 17.0,
+    and key order) and reused after.
+    """
+    plain = resolved(cfg) if plain is None else plain
+    if not isinstance(plain, dict) or not plain:
+        return OmegaConf.to_yaml(cfg, resolve=True)
+    return "".join(_YAML.get(repr((key, value)), lambda: _yaml_block(key, value)) for key, value in plain.items())
+
+
+def build_models(cfg, plain=None):
+    """(:func:`build_model`, :func:`build_friction`) of ``cfg``, built once per content of the
+    config nodes they read (:data:`MODEL_KEYS`) and shared: both hold parameters only, and
+    every solve and evaluation allocates its own state."""
+    plain = resolved(cfg) if plain is None else plain
+
+    def make():
+        model = build_model(cfg)
+        return model, build_friction(cfg, model)
+
+    return _MODELS.get(repr([plain.get(key) for key in MODEL_KEYS]), make)
+
+
+def clear_caches():
+    """Forget the cached YAML and models (they are rebuilt on the next call)."""
+    _YAML.clear()
+    _MODELS.clear()
+
+
+def _solve_design(cfg, case_slice=slice(None)):
+    """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config)."""
+    plain = resolved(cfg)
+    model, friction = build_models(cfg, plain)
+    ops = operating_points(cfg.load)
+    output = plain["output"]
+    results = [solve_case(model, friction, op, output) for op in ops[case_slice]]
+    return model, ops, results, plain
+
+
 def simulate(cfg):
     """Run the configured bearing through every load case of ``cfg.load``.
 
@@ -77,8 +172,5 @@ def simulate(cfg):
     xarray.Dataset
         The result following DATA.md, dims ``design`` (1) and ``case``.
     """
-    model = build_model(cfg)
-    friction = build_friction(cfg, model)
-    ops = operating_points(cfg.load)
-    results = [solve_case(model, friction, op, cfg.output) for op in ops]
-    return build_dataset(model.geometry, ops, results, OmegaConf.to_yaml(cfg, resolve=True), model.settings)
+    model, ops, results, plain = _solve_design(cfg)
+    return build_dataset(model.geometry, ops, results, config_yaml(cfg, plain), model.settings)
