@@ -155,6 +155,7 @@ def design_values(geometry):
 RATING_ATTRS = {"C": {"units": "N", "long_name": "ISO 281 dynamic load rating (2.14)"},
                 "C0": {"units": "N", "long_name": "ISO 281 static load rating (2.10)"}}
 X_SLICE_ATTRS = {"units": "mm", "long_name": "slice centre from the large end"}
+SLICE_ATTRS = {"long_name": "slice index from the large end", "units": "1"}
 
 
 def _dimension_coords(Z, n_slices):
@@ -164,7 +165,7 @@ def _dimension_coords(Z, n_slices):
         "direction": (["axial", "radial"], {"long_name": "inner-ring direction"}),
         "component": (COMPONENTS, {"long_name": "friction loss mechanism"}),
         "roller": (np.arange(Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
-        "slice": (np.arange(n_slices), {"long_name": "slice index from the large end", "units": "1"}),
+        "slice": (np.arange(n_slices), SLICE_ATTRS),
     }
     variables, indexes = {}, {}
     for name, (data, attrs) in values.items():
@@ -325,6 +326,9 @@ def combine_designs(datasets, extra_coords):
                                if name not in ds.coords})
         if "x_slice" in ds.coords:
             ds = ds.drop_vars("x_slice") if shared_x else ds.assign_coords(x_slice=ds.x_slice.expand_dims("design"))
+        elif x_slices and not shared_x:   # a failed design among unlike ones: no slices, NaN there
+            ds = ds.assign_coords(x_slice=(("design", "slice"), np.full((1, 0), np.nan), x_attrs),
+                                  slice=("slice", np.arange(0), SLICE_ATTRS))
         aligned.append(ds)
     out = xr.concat(aligned, dim="design", data_vars="minimal", coords="minimal", compat="override",
                     join="outer", fill_value=FILL_VALUES, combine_attrs="override")
