@@ -11,6 +11,7 @@ import subprocess
 import tempfile
 from importlib import metadata
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
@@ -339,7 +340,15 @@ def combine_designs(datasets, extra_coords):
     return out.assign_coords({name: ("design", values, attrs) for name, (values, attrs) in extra_coords.items()})
 
 
-def failure_table(rows):
+FAILURE_COLUMNS = {"design": ("1", "design index of the failed point", np.int32),
+                   "case": ("1", "case index of the failed point", np.int32),
+                   "job": ("1", "multirun job number of the failed point", np.int32),
+                   "overrides": (None, "command-line overrides of the job", str),
+                   "reason": (None, "why the point has no result: error, not converged, missing", str),
+                   "message": (None, "error message or solver status", str)}
+
+
+def failure_table(rows, columns=tuple(FAILURE_COLUMNS)):
     """The failed points of a sweep as variables on dimension ``failure``.
 
     Parameters
@@ -348,15 +357,152 @@ def failure_table(rows):
         Keys ``design``, ``case`` (indices into the sweep dataset), ``job`` (Hydra job number),
         ``overrides`` (the job's command-line overrides), ``reason`` ("error", "not converged"
         or "missing") and ``message``.
+    columns : sequence of str
+        The keys to write (``failed_<key>``), of :data:`FAILURE_COLUMNS`; all by default
+        (a batch has no job and no overrides).
     """
-    columns = {"design": ("1", "design index of the failed point", np.int32),
-               "case": ("1", "case index of the failed point", np.int32),
-               "job": ("1", "multirun job number of the failed point", np.int32),
-               "overrides": (None, "command-line overrides of the job", str),
-               "reason": (None, "why the point has no result: error, not converged, missing", str),
-               "message": (None, "error message or solver status", str)}
+    return xr.Dataset(_failure_variables(rows, columns))
+
+
+def _failure_variables(rows, columns):
     data = {}
-    for name, (units, long_name, dtype) in columns.items():
+    for name in columns:
+        units, long_name, dtype = FAILURE_COLUMNS[name]
         attrs = {"long_name": long_name} | ({"units": units} if units else {})
         data[f"failed_{name}"] = xr.Variable(("failure",), np.array([r[name] for r in rows], dtype=dtype), attrs)
-    return xr.Dataset(data)
+    return data
+
+
+# ------------------------------------------------------------------ a batch of designs in one go
+class DesignResult(NamedTuple):
+    """A simulated design: the arguments of :func:`build_dataset`."""
+
+    geometry: object
+    ops: list
+    results: list
+    config_yaml: str
+    settings: object
+
+
+class DesignFailure(NamedTuple):
+    """A design without a result: the arguments of :func:`failed_dataset`."""
+
+    bearing: dict
+    ops: list
+    config_yaml: str
+    message: str
+
+
+def _design_coordinates(design):
+    """Design coordinates (name -> value) of a design, as its single-design Dataset holds them."""
+    if isinstance(design, DesignResult):
+        return {"bearing_type": design.geometry.type, **_design_parts(design.geometry)[2]}
+    values = {"bearing_type": str(design.bearing.get("type"))}
+    for name in DESIGN_COORDS:
+        value = design.bearing.get(name)
+        values[name] = np.nan if value is None else value
+    return values
+
+
+def _case_key(op):
+    return tuple(float(getattr(op, c)) for c in CASE_COORDS)
+
+
+def build_batch_dataset(designs):
+    """One ``design`` x ``case`` Dataset (DATA.md) of many designs, built once from arrays.
+
+    Data and coordinates are those :func:`combine_designs` gives for the single-design Datasets
+    (:func:`build_dataset` of each :class:`DesignResult`, :func:`failed_dataset` of each
+    :class:`DesignFailure`) without extra coordinates: cases the union in order of first
+    appearance, NaN / ``converged = False`` where a design lacks a case, a variable or a
+    roller, ``x_slice`` on ``slice`` while all computed designs share it. Added: the resolved
+    config of every design (``design_config``) and the failure table (``failed_design``,
+    ``failed_case``, ``failed_reason`` "error" or "not converged", ``failed_message``; a design
+    without any case has one row with case -1). Attributes: the provenance of the first
+    computed design (``config`` its YAML), with the title of the batch.
+
+    Parameters
+    ----------
+    designs : list of DesignResult or DesignFailure
+    """
+    n_designs = len(designs)
+    keys = [[_case_key(op) for op in d.ops] for d in designs]
+    union = list(dict.fromkeys(k for ks in keys for k in ks))
+    index = {k: i for i, k in enumerate(union)}
+    n_cases = len(union)
+    computed = [d for d in designs if isinstance(d, DesignResult)]
+    sizes = {"race": 2, "direction": 2, "component": len(COMPONENTS),
+             "roller": max((d.geometry.Z for d in computed), default=0),
+             "slice": max((d.geometry.n_slices for d in computed), default=0)}
+    # data variables, in order of first appearance (as the single-design Datasets hold them)
+    names = []
+    for d in designs:
+        if isinstance(d, DesignFailure):
+            names.append("converged")
+            continue
+        names += [n for n in CASE_VARIABLES if n not in OPTIONAL_VARIABLES or any(n in r for r in d.results)]
+        names += ["C", "C0"]
+    names = list(dict.fromkeys(names))
+    arrays = {}
+    for name in names:
+        if name in RATING_ATTRS:
+            arrays[name] = np.full(n_designs, np.nan)
+            continue
+        dims = CASE_VARIABLES[name][0]
+        shape = (n_designs, n_cases) + tuple(sizes[dim] for dim in dims)
+        kind = INTEGER_OR_BOOL.get(name)
+        arrays[name] = np.full(shape, FILL_VALUES[name], dtype=kind) if kind else np.full(shape, np.nan)
+    rows = []
+    for i, (d, ks) in enumerate(zip(designs, keys)):
+        positions = [index[k] for k in ks]
+        if isinstance(d, DesignFailure):
+            rows += [{"design": i, "case": c, "reason": "error", "message": d.message} for c in positions or [-1]]
+            continue
+        for name, value in _design_parts(d.geometry)[3].items():
+            arrays[name][i] = value
+        for c, res in zip(positions, d.results):
+            for name, value in res.items():
+                target = arrays.get(name) if name in CASE_VARIABLES else None
+                if target is None:
+                    continue
+                value = np.asarray(value)
+                target[(i, c) + tuple(slice(0, n) for n in value.shape)] = value
+            if not res["converged"]:
+                rows.append({"design": i, "case": c, "reason": "not converged",
+                             "message": f"converged = False after {int(res['iterations'])} ring iterations"})
+    data = {}
+    for name in names:
+        dims, units, long_name = CASE_VARIABLES.get(name) or ((), None, None)
+        attrs = RATING_ATTRS[name] if name in RATING_ATTRS else {"units": units, "long_name": long_name}
+        full_dims = ("design",) if name in RATING_ATTRS else ("design", "case") + dims
+        data[name] = xr.Variable(full_dims, arrays[name], attrs)
+    data["design_config"] = _var("design", [d.config_yaml for d in designs],
+                                 {"long_name": "resolved config of the design (YAML), its load included"})
+    coords, indexes = {}, {}
+    if computed:
+        index_vars, indexes = _dimension_coords(sizes["roller"], sizes["slice"])
+        coords.update(index_vars)
+        x_slices = {tuple(d.geometry.x_slice_from_large_end.tolist()) for d in computed}
+        if len(x_slices) == 1:
+            coords["x_slice"] = _var("slice", computed[0].geometry.x_slice_from_large_end, X_SLICE_ATTRS)
+        else:
+            x = np.full((n_designs, sizes["slice"]), np.nan)
+            for i, d in enumerate(designs):
+                if isinstance(d, DesignResult):
+                    x[i, :d.geometry.n_slices] = d.geometry.x_slice_from_large_end
+            coords["x_slice"] = _var(("design", "slice"), x, X_SLICE_ATTRS)
+    for name, (units, long_name) in CASE_COORD_ATTRS.items():
+        coords[name] = _var("case", [k[CASE_COORDS.index(name)] for k in union],
+                            {"units": units, "long_name": long_name})
+    values = [_design_coordinates(d) for d in designs]
+    for name in dict.fromkeys(n for v in values for n in v):
+        sample = next(v[name] for v in values if name in v)   # the first design's sets the fill
+        missing = "" if np.asarray([sample]).dtype.kind in "OUS" else np.nan
+        attrs = {"long_name": "bearing type"} if name == "bearing_type" else dict(
+            zip(("units", "long_name"), DESIGN_COORDS[name]))
+        coords[name] = _var("design", [v.get(name, missing) for v in values], attrs)
+    first = computed[0] if computed else None
+    attrs = provenance_attrs(f"batch of {n_designs} designs x {n_cases} cases",
+                             (first or designs[0]).config_yaml, first.settings if first else "none: no design computed")
+    data.update(_failure_variables(rows, ("design", "case", "reason", "message")))
+    return xr.Dataset(data, coords=xr.Coordinates(coords, indexes=indexes), attrs=attrs)
