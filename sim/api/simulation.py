@@ -154,9 +154,9 @@ def clear_caches():
     _MODELS.clear()
 
 
-def _solve_design(cfg, case_slice=slice(None)):
+def _solve_design(cfg, case_slice=slice(None), plain=None):
     """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config)."""
-    plain = resolved(cfg)
+    plain = resolved(cfg) if plain is None else plain
     model, friction = build_models(cfg, plain)
     ops = operating_points(cfg.load)
     output = plain["output"]
@@ -182,26 +182,27 @@ def simulate(cfg):
 
 
 # ------------------------------------------------------------------ many designs in worker processes
-def _run(cfg, start, stop, with_yaml):
-    """Cases ``start:stop`` of one design: ("ok", (geometry, settings, results, YAML or None)),
-    or ("error", message): an exception fails the design, as it fails :func:`simulate`."""
+def _run(cfg, plain, start, stop, with_yaml):
+    """Cases ``start:stop`` of one design (``plain``: its :func:`resolved` config): ("ok",
+    (geometry, settings, results, YAML or None)), or ("error", message): an exception fails the
+    design, as it fails :func:`simulate`."""
     try:
-        model, _, results, plain = _solve_design(cfg, slice(start, stop))
+        model, _, results, plain = _solve_design(cfg, slice(start, stop), plain)
         return "ok", (model.geometry, model.settings, results, config_yaml(cfg, plain) if with_yaml else None)
     except Exception as exc:
         return "error", f"{type(exc).__name__}: {exc}"
 
 
-_WORKER_CFGS = ()   # the configs of the batch, in a worker process
+_WORKER_CFGS = ()   # the configs of the batch and their resolved forms, in a worker process
 
 
-def _init_worker(cfgs):
+def _init_worker(cfgs, plains):
     global _WORKER_CFGS
-    _WORKER_CFGS = cfgs
+    _WORKER_CFGS = tuple(zip(cfgs, plains))
 
 
 def _run_in_worker(design, start, stop, with_yaml):
-    return _run(_WORKER_CFGS[design], start, stop, with_yaml)
+    return _run(*_WORKER_CFGS[design], start, stop, with_yaml)
 
 
 def _kind(plain):
@@ -213,7 +214,7 @@ def _kind(plain):
 _WARM = set()   # kinds whose kernels ran in this process (compiled, or loaded from numba's cache)
 
 
-def _warm_up(cfgs, kinds):
+def _warm_up(cfgs, plains, kinds):
     """Run the first case of designs of each kind not yet warm here, until one converges (at
     most 3 per kind), before the workers start.
 
@@ -223,11 +224,11 @@ def _warm_up(cfgs, kinds):
     processes compile the same kernel at once.
     """
     tried = {}
-    for cfg, kind in zip(cfgs, kinds):
+    for cfg, plain, kind in zip(cfgs, plains, kinds):
         if kind is None or kind in _WARM or tried.get(kind, 0) >= 3:
             continue
         tried[kind] = tried.get(kind, 0) + 1
-        status, out = _run(cfg, 0, 1, False)
+        status, out = _run(cfg, plain, 0, 1, False)
         if status == "ok" and all(res["converged"] for res in out[2]):
             _WARM.add(kind)
 
@@ -248,7 +249,7 @@ def default_workers():
         return os.cpu_count() or 1
 
 
-def _run_pool(cfgs, tasks, workers):
+def _run_pool(cfgs, plains, tasks, workers):
     """Outcomes of ``tasks`` (design, start, stop, with_yaml) on ``workers`` processes, in order.
 
     The workers are forked where the platform can (they start with the kernels warmed here and
@@ -258,7 +259,7 @@ def _run_pool(cfgs, tasks, workers):
     method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
     outcomes = [None] * len(tasks)
     with cf.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context(method),
-                                initializer=_init_worker, initargs=(cfgs,)) as pool:
+                                initializer=_init_worker, initargs=(cfgs, plains)) as pool:
         futures = {pool.submit(_run_in_worker, *task): i for i, task in enumerate(tasks)}
         for future in cf.as_completed(futures):
             try:
@@ -320,10 +321,10 @@ def simulate_batch(cfgs, workers=None):
     tasks = [(d, a, b, a == 0) for d in range(n) if d not in failed for a, b in _chunks(len(ops[d]), workers, n)]
     workers = min(workers, len(tasks))
     if workers <= 1:
-        outcomes = [_run(cfgs[d], a, b, with_yaml) for d, a, b, with_yaml in tasks]
+        outcomes = [_run(cfgs[d], plains[d], a, b, with_yaml) for d, a, b, with_yaml in tasks]
     else:
-        _warm_up(cfgs, [None if d in failed else _kind(plains[d]) for d in range(n)])
-        outcomes = _run_pool(cfgs, tasks, workers)
+        _warm_up(cfgs, plains, [None if d in failed else _kind(plains[d]) for d in range(n)])
+        outcomes = _run_pool(cfgs, plains, tasks, workers)
     parts = {}
     for (d, *_), (status, out) in zip(tasks, outcomes):
         if status == "error":
