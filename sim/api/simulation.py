@@ -158,7 +158,7 @@ def _solve_design(cfg, case_slice=slice(None), plain=None):
     """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config)."""
     plain = resolved(cfg) if plain is None else plain
     model, friction = build_models(cfg, plain)
-    ops = operating_points(cfg.load)
+    ops = operating_points(plain["load"])
     output = plain["output"]
     results = [solve_case(model, friction, op, output) for op in ops[case_slice]]
     return model, ops, results, plain
@@ -314,7 +314,7 @@ def simulate_batch(cfgs, workers=None):
     for d, cfg in enumerate(cfgs):
         try:
             plains[d] = resolved(cfg)
-            ops[d] = operating_points(cfg.load)
+            ops[d] = operating_points(plains[d]["load"])
         except Exception as exc:
             failed[d] = f"{type(exc).__name__}: {exc}"
     workers = default_workers() if workers is None else max(1, int(workers))
