@@ -5,22 +5,24 @@ Batch: 16 designs of the reference TSRB (PCR 80, 100, 120, 150 mm x kappa 0.93, 
 friction on (the default config): 96 cases per batch. After one warm-up batch (the numba
 kernels loaded from the on-disk cache, or compiled), ``--repeats`` timed batches, each of new
 designs (PCR shifted by 1 um per repeat, so that no cached model or YAML of an earlier batch
-serves it); reported are the median and best cases per second, on ``--workers`` processes
-and, for comparison, in this process alone (``workers=1``, ``--serial-repeats`` batches),
-with the target of 150 combined cases with friction per second on 2 cores, and the solver
-wall time of the cases: the physics bound of the rate and the share of it reached.
+serves it). Reported: the median and best cases per second on ``--workers`` processes (target
+150 combined cases with friction per second on 2 cores); the CPU time of all processes per
+batch and the rate it allows on as many idle cores; the solver wall time of the cases; and,
+in this process alone (``workers=1``, ``--serial-repeats`` batches), rate, CPU per case and
+whether it gives the same dataset.
 
 Overhead: for the reference TSRB at Fa 4500 N, Fr 2000 N (one combined case), the medians
-of ``--calls`` warm calls (interleaved: one of each per round) of
+of ``--calls`` warm calls (interleaved: one of each per round), wall and CPU time, of
 
 - physics: ``solve_case`` (the load distribution twice and the traction kinematics) with
   models built beforehand;
 - ``sim.simulate(cfg)``: the whole call (config read, cached models and YAML, Dataset);
-- its parts: ``OmegaConf.to_container`` (read once per call), ``OmegaConf.to_yaml`` (what the
-  provenance cost per call before it was cached), ``sim.io.build_dataset``;
+- its parts: ``OmegaConf.to_container`` (read once per call), ``OmegaConf.to_yaml`` and
+  ``build_model`` + ``build_friction`` (what they cost per call before they were cached per
+  configuration), ``sim.io.build_dataset``;
 
-and the ratio simulate / physics (target <= 1.2). The machine may be shared: every number is
-a median of repeats, and timings of the same run are comparable with each other.
+and the ratio simulate / physics (target <= 1.2). On a shared machine the wall times swing
+with the other processes' load; the CPU times and ratios of one run hardly do.
 
 Run from the repository root::
 
@@ -35,6 +37,11 @@ import statistics
 import sys
 import time
 from pathlib import Path
+
+try:
+    import resource
+except ImportError:   # not on Windows: the workers' CPU time is then not counted
+    resource = None
 
 REPO = Path(__file__).resolve().parent.parent
 
@@ -59,25 +66,37 @@ def parse_args(argv=None):
 
 
 def interleaved_ms(items, n):
-    """Median ms of each callable of ``items`` (name -> f) over ``n`` rounds, one call of each per
-    round, so that a load change on a shared machine hits all of them alike."""
-    times = {name: [] for name in items}
+    """Median wall and CPU ms of each callable of ``items`` (name -> f) over ``n`` rounds, one
+    call of each per round, so that a load change on a shared machine hits all of them alike.
+    The CPU time (``time.process_time``) counts this process only: other processes on the
+    machine lengthen the wall time, hardly the CPU time."""
+    wall, cpu = {name: [] for name in items}, {name: [] for name in items}
     for _ in range(n):
         for name, f in items.items():
-            t0 = time.perf_counter()
+            t0, c0 = time.perf_counter(), time.process_time()
             f()
-            times[name].append(time.perf_counter() - t0)
-    return {name: 1e3 * statistics.median(t) for name, t in times.items()}
+            cpu[name].append(time.process_time() - c0)
+            wall[name].append(time.perf_counter() - t0)
+    return {name: (1e3 * statistics.median(wall[name]), 1e3 * statistics.median(cpu[name])) for name in items}
+
+
+def cpu_seconds():
+    """CPU time of this process and of its finished (joined) children [s]."""
+    if resource is None:
+        return time.process_time()
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return own.ru_utime + own.ru_stime + children.ru_utime + children.ru_stime
 
 
 def timed(f, n):
-    """(median s, best s, last result) of ``n`` calls of f."""
-    times, out = [], None
+    """(median wall s, best wall s, median CPU s of all processes, last result) of ``n`` calls of f."""
+    wall, cpu, out = [], [], None
     for _ in range(n):
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), cpu_seconds()
         out = f()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times), min(times), out
+        cpu.append(cpu_seconds() - c0)
+        wall.append(time.perf_counter() - t0)
+    return statistics.median(wall), min(wall), statistics.median(cpu), out
 
 
 def main(argv=None):
@@ -118,11 +137,12 @@ def main(argv=None):
         "build_model + build_friction (uncached)": lambda: build_friction(cfg, build_model(cfg)),
         "io.build_dataset": lambda: io.build_dataset(model.geometry, ops, results, text, model.settings),
     }, n)
-    ratio = parts["simulate (whole call)"] / parts["physics (solve_case)"]
     print(f"per-call overhead, reference TSRB, one combined case, median of {n} warm calls, interleaved:")
-    for name, ms in parts.items():
-        print(f"  {name:42s} {ms:8.2f} ms")
-    print(f"  {'ratio simulate / physics':42s} {ratio:8.2f}    (target <= {TARGET_RATIO})")
+    print(f"  {'':42s} {'wall':>8s}    {'CPU':>8s}")
+    for name, (wall, cpu) in parts.items():
+        print(f"  {name:42s} {wall:8.2f} ms {cpu:8.2f} ms")
+    ratios = [parts["simulate (whole call)"][i] / parts["physics (solve_case)"][i] for i in (0, 1)]
+    print(f"  {'ratio simulate / physics':42s} {ratios[0]:8.2f}    {ratios[1]:8.2f}       (target <= {TARGET_RATIO})")
     print()
 
     # ------------------------------------------------------------------ the batch
@@ -139,24 +159,26 @@ def main(argv=None):
     simulate_batch(cfgs, workers=workers)
     print(f"  warm-up batch      : {time.perf_counter() - t0:6.2f} s")
     runs = [designs(next(batches)) for _ in range(args.repeats)]
-    med, best, ds = timed(lambda: simulate_batch(runs.pop(0), workers=workers), args.repeats)
+    med, best, cpu, ds = timed(lambda: simulate_batch(runs.pop(0), workers=workers), args.repeats)
     cfgs = designs(args.repeats)   # the designs of the last timed batch
     rate = n_cases / med
     print(f"  {workers} workers          : median {med:6.3f} s, best {best:6.3f} s of {args.repeats} -> "
           f"{rate:6.1f} cases/s median, {n_cases / best:6.1f} best (target >= {TARGET_CASES_PER_S:.0f} on 2 cores)")
+    print(f"  CPU, all processes : {cpu:6.3f} s per batch ({1e3 * cpu / n_cases:.1f} ms per case) -> "
+          f"{workers * n_cases / cpu:6.1f} cases/s on {workers} idle cores")
     converged = int(ds.converged.sum())
     print(f"  converged          : {converged} of {n_cases}; failed rows: {ds.sizes['failure']}")
     solver = float(ds.wall_time.sum())
     print(f"  solver wall time   : {solver:6.3f} s summed over the cases of the last batch "
-          f"({1e3 * solver / n_cases:.1f} ms per case): at most {workers * n_cases / solver:6.1f} cases/s on "
-          f"{workers} workers; the batch reached {100 * rate * solver / (workers * n_cases):.0f} % of it")
+          f"({1e3 * solver / n_cases:.1f} ms per case)")
     same = True
     if args.serial_repeats > 0:
         serial = simulate_batch(cfgs, workers=1)   # the designs of ds, for the comparison
         runs = [designs(next(batches)) for _ in range(args.serial_repeats)]
-        smed, sbest, _ = timed(lambda: simulate_batch(runs.pop(0), workers=1), args.serial_repeats)
-        print(f"  1 worker (here)    : median {smed:6.3f} s -> {n_cases / smed:6.1f} cases/s; speed-up "
-              f"{smed / med:.2f}x")
+        smed, _, scpu, _ = timed(lambda: simulate_batch(runs.pop(0), workers=1), args.serial_repeats)
+        print(f"  1 worker (here)    : median {smed:6.3f} s -> {n_cases / smed:6.1f} cases/s, CPU "
+              f"{1e3 * scpu / n_cases:.1f} ms per case; speed-up {smed / med:.2f}x, CPU of {workers} workers / "
+              f"1 worker {cpu / scpu:.2f}")
         a, b = (d.drop_vars("wall_time").drop_attrs() for d in (ds, serial))
         same = a.identical(b)
         print(f"  equal to workers=1 : {same}")

@@ -159,38 +159,70 @@ X_SLICE_ATTRS = {"units": "mm", "long_name": "slice centre from the large end"}
 SLICE_ATTRS = {"long_name": "slice index from the large end", "units": "1"}
 
 
+INDEX_ATTRS = {"race": {"long_name": "raceway"}, "direction": {"long_name": "inner-ring direction"},
+               "component": {"long_name": "friction loss mechanism"},
+               "roller": {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}, "slice": SLICE_ATTRS}
+
+
+@functools.lru_cache(maxsize=64)
+def _pandas_indexes(Z, n_slices):
+    """The indexes of race, direction, component, roller, slice, built from numpy once (pandas
+    Index construction is the slow part of an index)."""
+    values = {"race": RACES, "direction": ["axial", "radial"], "component": COMPONENTS, "roller": np.arange(Z),
+              "slice": np.arange(n_slices)}
+    return {name: PandasIndex.from_variables({name: _var(name, data, {})}, options={})
+            for name, data in values.items()}
+
+
 def _dimension_coords(Z, n_slices):
-    """Index coordinates race, direction, component, roller, slice as (variables, indexes)."""
-    values = {
-        "race": (RACES, {"long_name": "raceway"}),
-        "direction": (["axial", "radial"], {"long_name": "inner-ring direction"}),
-        "component": (COMPONENTS, {"long_name": "friction loss mechanism"}),
-        "roller": (np.arange(Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
-        "slice": (np.arange(n_slices), SLICE_ATTRS),
-    }
+    """Index coordinates race, direction, component, roller, slice as (variables, indexes): new
+    objects for every Dataset around the cached (immutable) pandas indexes."""
     variables, indexes = {}, {}
-    for name, (data, attrs) in values.items():
-        variable = {name: _var(name, data, attrs)}
-        index = PandasIndex.from_variables(variable, options={})
-        variables.update(index.create_variables(variable))
+    for name, cached in _pandas_indexes(Z, n_slices).items():
+        index = PandasIndex(cached.index, name, coord_dtype=cached.coord_dtype)
+        variables.update(index.create_variables({name: xr.Variable(name, [], INDEX_ATTRS[name])}))
         indexes[name] = index
     return variables, indexes
 
 
-_DESIGN_PARTS = {}     # repr of a Geometry -> its dimension coordinates, design values and ratings
+def _dataset(data, coords, indexes, attrs):
+    """A Dataset of Variables that fit together by construction: ``data`` and ``coords`` name ->
+    Variable (one per name; shared dims of one size, checked here), ``indexes`` the xarray
+    indexes of the dimension coordinates among ``coords``.
+
+    The public constructor merges the variables one by one (several copies and checks each,
+    about 20 us per variable: most of the assembly of a 50-variable result); where xarray has
+    it, ``Dataset._construct_direct`` takes them as they are. It is private but is what xarray
+    itself builds its validated results with (since 0.16); tests/sweeps/test_simulate_caches.py
+    checks that both paths give identical Datasets, so a change of it shows there.
+    """
+    variables = {**data, **coords}
+    dims = {}
+    for name, var in variables.items():
+        for dim, size in zip(var.dims, var.shape):
+            if dims.setdefault(dim, size) != size:
+                raise ValueError(f"{name}: dimension {dim} has {size} entries, other variables {dims[dim]}")
+    if DIRECT_CONSTRUCTION:
+        return xr.Dataset._construct_direct(variables, set(coords), dims, attrs, indexes)
+    return xr.Dataset(data, coords=xr.Coordinates(coords, indexes=indexes), attrs=attrs)
+
+
+DIRECT_CONSTRUCTION = hasattr(xr.Dataset, "_construct_direct")
+
+
+_DESIGN_PARTS = {}     # repr of a Geometry -> its design values and ratings
 _DESIGN_PARTS_SIZE = 256
 
 
 def _design_parts(geometry):
-    """What the Dataset of a geometry shares with every other of the same geometry, computed once:
-    the index coordinates (immutable, so they are shared), design values and (C, C0) [N]."""
+    """Design values and ratings {C, C0} [N] of a geometry, computed once per geometry."""
     key = repr(geometry)    # every field of the dataclass (arrays excluded: derived from the fields)
     parts = _DESIGN_PARTS.get(key)
     if parts is None:
         g = geometry
         C = ratings.dynamic_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha, g.b_m)
         C0 = ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha)
-        parts = (*_dimension_coords(g.Z, g.n_slices), design_values(g), {"C": C, "C0": C0})
+        parts = (design_values(g), {"C": C, "C0": C0})
         if len(_DESIGN_PARTS) >= _DESIGN_PARTS_SIZE:
             _DESIGN_PARTS.pop(next(iter(_DESIGN_PARTS)))
         _DESIGN_PARTS[key] = parts
@@ -200,9 +232,9 @@ def _design_parts(geometry):
 def build_dataset(geometry, ops, results, config_yaml, settings):
     """Assemble the DATA.md Dataset of one bearing (design dim of length 1) over its cases.
 
-    Every array is filled in numpy first and the Dataset is created once from Variables, with
-    the index coordinates of the geometry built once per geometry (a Dataset assembled from
-    tuples, with its indexes, costs several ms per call).
+    Every array is filled in numpy first and the Dataset is created once from Variables
+    (:func:`_dataset`), the pandas indexes and the ratings of a geometry computed once (a
+    Dataset assembled from tuples, with its indexes, costs several ms per call).
 
     Parameters
     ----------
@@ -215,7 +247,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     settings : sim.api.simulation.SolverSettings
     """
     g = geometry
-    index_vars, indexes, design, rating = _design_parts(g)
+    design, rating = _design_parts(g)
     sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 2, "component": len(COMPONENTS)}
     data = {}
     for name, (dims, units, long_name) in CASE_VARIABLES.items():
@@ -225,7 +257,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
         data[name] = xr.Variable(("design", "case") + dims, arr, {"units": units, "long_name": long_name})
     for name, value in rating.items():
         data[name] = _var(("design",), [value], RATING_ATTRS[name])
-    coords = dict(index_vars)
+    coords, indexes = _dimension_coords(g.Z, g.n_slices)
     coords["x_slice"] = _var("slice", g.x_slice_from_large_end, X_SLICE_ATTRS)
     coords.update({name: _var(*value) for name, value in case_coords(ops).items()})
     coords["bearing_type"] = _var("design", [g.type], {"long_name": "bearing type"})
@@ -233,8 +265,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
         units, long_name = DESIGN_COORDS[name]
         coords[name] = _var("design", [value], {"units": units, "long_name": long_name})
     title = f"{g.type} quasi-static load distribution and friction"
-    return xr.Dataset(data, coords=xr.Coordinates(coords, indexes=indexes),
-                      attrs=provenance_attrs(title, config_yaml, settings))
+    return _dataset(data, coords, indexes, provenance_attrs(title, config_yaml, settings))
 
 
 def write_netcdf_atomic(ds, path):
@@ -396,7 +427,7 @@ class DesignFailure(NamedTuple):
 def _design_coordinates(design):
     """Design coordinates (name -> value) of a design, as its single-design Dataset holds them."""
     if isinstance(design, DesignResult):
-        return {"bearing_type": design.geometry.type, **_design_parts(design.geometry)[2]}
+        return {"bearing_type": design.geometry.type, **_design_parts(design.geometry)[0]}
     values = {"bearing_type": str(design.bearing.get("type"))}
     for name in DESIGN_COORDS:
         value = design.bearing.get(name)
@@ -458,7 +489,7 @@ def build_batch_dataset(designs):
         if isinstance(d, DesignFailure):
             rows += [{"design": i, "case": c, "reason": "error", "message": d.message} for c in positions or [-1]]
             continue
-        for name, value in _design_parts(d.geometry)[3].items():
+        for name, value in _design_parts(d.geometry)[1].items():
             arrays[name][i] = value
         for c, res in zip(positions, d.results):
             for name, value in res.items():
@@ -505,4 +536,4 @@ def build_batch_dataset(designs):
     attrs = provenance_attrs(f"batch of {n_designs} designs x {n_cases} cases",
                              (first or designs[0]).config_yaml, first.settings if first else "none: no design computed")
     data.update(_failure_variables(rows, ("design", "case", "reason", "message")))
-    return xr.Dataset(data, coords=xr.Coordinates(coords, indexes=indexes), attrs=attrs)
+    return _dataset(data, coords, indexes, attrs)

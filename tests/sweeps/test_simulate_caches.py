@@ -11,7 +11,7 @@ from omegaconf import OmegaConf
 
 import sim
 from sim import io
-from sim.api.simulation import _MODELS, _YAML, config_yaml, simulate
+from sim.api.simulation import _MODELS, _YAML, config_yaml, simulate, simulate_batch
 from tests.sweeps.common import FAST, REPO
 
 CHECKER = REPO.parent / "shared" / "tools" / "check_result.py"
@@ -58,3 +58,34 @@ def test_result_file_keeps_its_form(tmp_path):
     if CHECKER.exists():
         out = subprocess.run([sys.executable, str(CHECKER), str(path)], capture_output=True, text=True)
         assert out.returncode == 0, out.stdout
+
+
+def _structure(ds):
+    """Everything of a Dataset that its construction decides: variables in order with their type,
+    dims, dtype and attrs, the dims in order, the coordinate names, the indexes, the attributes."""
+    variables = [(name, type(var).__name__, var.dims, var.dtype, var.attrs) for name, var in ds.variables.items()]
+    indexes = {k: (type(i).__name__, list(i.index)) for k, i in ds.xindexes.items()}
+    return variables, list(ds.sizes.items()), sorted(ds.coords), indexes, {k: v for k, v in ds.attrs.items()
+                                                                           if k != "created"}
+
+
+@pytest.mark.parametrize("overrides", [
+    ["load.Fa=[3000,4500]", "load.Fr=[0,2000]"], ["bearing=trb_32208", "load.Fr=0"], FAST,
+    ["load.Fa=4500", "load.Fr=2000", "solver.max_iterations=1", "solver.continuation_steps=0"],
+])
+def test_direct_construction_equals_the_public_constructor(overrides, monkeypatch):
+    """sim.io builds its Datasets with xarray's private Dataset._construct_direct where it exists;
+    the public constructor gives the same Dataset (the single-design result and a batch)."""
+    if not io.DIRECT_CONSTRUCTION:
+        pytest.skip("this xarray has no Dataset._construct_direct: the public constructor is used")
+    cfgs = [sim.load_config(overrides), sim.load_config([*overrides, "bearing.Z=15"])]
+    for build in (lambda: simulate(cfgs[0]), lambda: simulate_batch(cfgs, workers=1)):
+        direct = build()
+        monkeypatch.setattr(io, "DIRECT_CONSTRUCTION", False)
+        public = build()
+        monkeypatch.setattr(io, "DIRECT_CONSTRUCTION", True)
+        for ds in (direct, public):
+            ds["wall_time"].values[:] = 0.0
+        xr.testing.assert_identical(direct, public.assign_attrs(created=direct.attrs["created"]))
+        assert _structure(direct) == _structure(public)
+        assert direct.sel(race="inner").pmax.dims == ("design", "case")   # the indexes work
