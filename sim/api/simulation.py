@@ -22,6 +22,7 @@ import concurrent.futures as cf
 import math
 import multiprocessing
 import os
+import sys
 import time
 from collections import OrderedDict
 
@@ -249,16 +250,19 @@ def default_workers():
         return os.cpu_count() or 1
 
 
+START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"   # of the workers (_run_pool)
+
+
 def _run_pool(cfgs, plains, tasks, workers):
     """Outcomes of ``tasks`` (design, start, stop, with_yaml) on ``workers`` processes, in order.
 
-    The workers are forked where the platform can (they start with the kernels warmed here and
-    the configs, nothing pickled), else spawned (the configs pickled once per worker). A worker
-    that dies fails the designs of its unfinished tasks.
+    On Linux the workers are forked (they start with the kernels warmed here and the configs,
+    nothing pickled); elsewhere spawned (fork is unsafe on macOS, absent on Windows: they load
+    the kernels from numba's on-disk cache, and the configs are pickled once per worker). A
+    worker that dies fails the designs of its unfinished tasks.
     """
-    method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
     outcomes = [None] * len(tasks)
-    with cf.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context(method),
+    with cf.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context(START_METHOD),
                                 initializer=_init_worker, initargs=(cfgs, plains)) as pool:
         futures = {pool.submit(_run_in_worker, *task): i for i, task in enumerate(tasks)}
         for future in cf.as_completed(futures):
@@ -302,9 +306,10 @@ def simulate_batch(cfgs, workers=None):
 
     Notes
     -----
-    Processes, not threads or numba ``prange``: a case is a Python loop around many small
-    kernels (ring Newton, roller solves, traction balance), so the interpreter, not numba,
-    runs most of the time between them, and the GIL would serialise threads.
+    Processes, not threads or numba ``prange``: a case is Python around its kernels (model
+    setup, continuation, the friction fixed point, the outputs), a fifth to a third of its
+    time under the GIL, which would serialise threads; and a ``prange`` over designs would
+    need the whole case inside one kernel.
     """
     cfgs = list(cfgs)
     if not cfgs:

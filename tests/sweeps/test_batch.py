@@ -16,6 +16,7 @@ import sim
 from sim import io
 from sim.api import simulate_batch
 from sim.api.cases import operating_points
+from sim.api import simulation
 from sim.api.simulation import simulate
 from tests.sweeps.common import FAST, REPO
 
@@ -128,3 +129,14 @@ def test_unlike_designs_with_a_failure_combine():
     assert ds.x_slice.dims == ("design", "slice") and ds.x_slice.isel(design=2).isnull().all()
     assert ds.slice.dtype.kind == "i" and ds.sizes["slice"] == 8
     assert ds.converged.values.tolist() == [[True], [True], [False]]
+
+
+def test_spawned_workers_agree(monkeypatch):
+    """Where the workers cannot be forked (macOS, Windows) they are spawned: the configs reach
+    them pickled and the kernels come from numba's cache; the result is the same."""
+    cfgs = configs([*FAST, "load.Fa=[3000,5000]", "load.Fr=0"], [*FAST, "bearing.PCR=8", "load.Fa=3000", "load.Fr=0"])
+    monkeypatch.setattr(simulation, "START_METHOD", "spawn")
+    spawned = simulate_batch(cfgs, workers=2)
+    here = simulate_batch(cfgs, workers=1)
+    xr.testing.assert_identical(spawned.drop_vars("wall_time").drop_attrs(), here.drop_vars("wall_time").drop_attrs())
+    assert spawned.converged.values.tolist() == [[True, True], [False, False]]
