@@ -306,10 +306,10 @@ def simulate_batch(cfgs, workers=None):
 
     Notes
     -----
-    Processes, not threads or numba ``prange``: a case is Python around its kernels (model
-    setup, continuation, the friction fixed point, the outputs), a fifth to a third of its
-    time under the GIL, which would serialise threads; and a ``prange`` over designs would
-    need the whole case inside one kernel.
+    Processes, not threads or numba ``prange``: the kernels release the GIL, but about 15 %
+    of a combined case (continuation, the friction fixed point, the outputs) and all of a
+    design's setup (config, models, YAML) is Python under the GIL, which caps two threads at
+    about 1.7x; a ``prange`` over designs would need the whole case inside one kernel.
     """
     cfgs = list(cfgs)
     if not cfgs:
