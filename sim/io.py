@@ -11,9 +11,11 @@ import subprocess
 import tempfile
 from importlib import metadata
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
+from xarray.indexes import PandasIndex
 
 from sim.physics import ratings
 from sim.physics.friction import COMPONENTS
@@ -77,12 +79,19 @@ def git_commit():
         return "unknown"
 
 
+@functools.lru_cache(maxsize=1)
 def package_version():
-    """Installed version of tsrb-workbench, or the source version when not installed."""
+    """Installed version of tsrb-workbench, or the source version when not installed (looked up
+    once per process: the metadata search costs about 0.5 ms)."""
     try:
         return metadata.version("tsrb-workbench")
     except metadata.PackageNotFoundError:
         return "0.1.0+source"
+
+
+def _var(dims, data, attrs):
+    """A Variable of ``data`` (converted as xarray would: ``np.asarray``)."""
+    return xr.Variable(dims, np.asarray(data), attrs)
 
 
 def _case_array(name, dims, results, sizes):
@@ -105,16 +114,127 @@ def utc_now():
     return _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
 
 
+CASE_COORD_ATTRS = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
+                    "tilt": ("deg", "imposed inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
+
+
 def case_coords(ops):
     """Case coordinates (DATA.md) of a list of sim.api.simulation.OperatingPoint."""
-    attrs = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "speed": ("rpm", "inner-ring speed"),
-             "tilt": ("deg", "imposed inner-ring tilt"), "oil_temperature": ("degC", "oil temperature")}
     return {name: ("case", [getattr(o, name) for o in ops], {"units": units, "long_name": long_name})
-            for name, (units, long_name) in attrs.items()}
+            for name, (units, long_name) in CASE_COORD_ATTRS.items()}
+
+
+SOURCES = ("thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004; ZhouHoeprich1991; PanHamrock1989; "
+           "HamrockDowson1977; BairWiner1979; JohnsonTevaarwerk1977")
+
+
+def provenance_attrs(title, config_yaml, settings):
+    """Dataset attributes (DATA.md provenance) of a result of the quasi-static solver."""
+    return {
+        "Conventions": "CF-1.10",
+        "title": title,
+        "package_version": package_version(),
+        "git_commit": git_commit(),
+        "config": config_yaml,
+        "solver": "quasi_static",
+        "solver_settings": str(settings),
+        "created": utc_now(),
+        "sources": SOURCES,
+    }
+
+
+def design_values(geometry):
+    """Design coordinates (DATA.md, :data:`DESIGN_COORDS`) of a geometry: name -> value."""
+    g = geometry
+    values = {"alpha": np.degrees(g.alpha), "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
+              "Lwe": g.Lwe, "Z": g.Z}
+    if g.type == "TSRB":
+        values.update(PCR=g.PCR, kappa=g.kappa, aP=g.aP, aPk=g.aPk, aA=g.aA, PCR_LB=g.PCR_LB)
+    return values
+
+
+RATING_ATTRS = {"C": {"units": "N", "long_name": "ISO 281 dynamic load rating (2.14)"},
+                "C0": {"units": "N", "long_name": "ISO 281 static load rating (2.10)"}}
+X_SLICE_ATTRS = {"units": "mm", "long_name": "slice centre from the large end"}
+SLICE_ATTRS = {"long_name": "slice index from the large end", "units": "1"}
+
+
+INDEX_ATTRS = {"race": {"long_name": "raceway"}, "direction": {"long_name": "inner-ring direction"},
+               "component": {"long_name": "friction loss mechanism"},
+               "roller": {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}, "slice": SLICE_ATTRS}
+
+
+@functools.lru_cache(maxsize=64)
+def _pandas_indexes(Z, n_slices):
+    """The indexes of race, direction, component, roller, slice, built from numpy once (pandas
+    Index construction is the slow part of an index)."""
+    values = {"race": RACES, "direction": ["axial", "radial"], "component": COMPONENTS, "roller": np.arange(Z),
+              "slice": np.arange(n_slices)}
+    return {name: PandasIndex.from_variables({name: _var(name, data, {})}, options={})
+            for name, data in values.items()}
+
+
+def _dimension_coords(Z, n_slices):
+    """Index coordinates race, direction, component, roller, slice as (variables, indexes): new
+    objects for every Dataset around the cached (immutable) pandas indexes."""
+    variables, indexes = {}, {}
+    for name, cached in _pandas_indexes(Z, n_slices).items():
+        index = PandasIndex(cached.index, name, coord_dtype=cached.coord_dtype)
+        variables.update(index.create_variables({name: xr.Variable(name, [], INDEX_ATTRS[name])}))
+        indexes[name] = index
+    return variables, indexes
+
+
+def _dataset(data, coords, indexes, attrs):
+    """A Dataset of Variables that fit together by construction: ``data`` and ``coords`` name ->
+    Variable (one per name; shared dims of one size, checked here), ``indexes`` the xarray
+    indexes of the dimension coordinates among ``coords``.
+
+    The public constructor merges the variables one by one (several copies and checks each,
+    about 20 us per variable: most of the assembly of a 50-variable result); where xarray has
+    it, ``Dataset._construct_direct`` takes them as they are. It is private but is what xarray
+    itself builds its validated results with (since 0.16); tests/sweeps/test_simulate_caches.py
+    checks that both paths give identical Datasets, so a change of it shows there.
+    """
+    variables = {**data, **coords}
+    dims = {}
+    for name, var in variables.items():
+        for dim, size in zip(var.dims, var.shape):
+            if dims.setdefault(dim, size) != size:
+                raise ValueError(f"{name}: dimension {dim} has {size} entries, other variables {dims[dim]}")
+    if DIRECT_CONSTRUCTION:
+        return xr.Dataset._construct_direct(variables, set(coords), dims, attrs, indexes)
+    return xr.Dataset(data, coords=xr.Coordinates(coords, indexes=indexes), attrs=attrs)
+
+
+DIRECT_CONSTRUCTION = hasattr(xr.Dataset, "_construct_direct")
+
+
+_DESIGN_PARTS = {}     # repr of a Geometry -> its design values and ratings
+_DESIGN_PARTS_SIZE = 256
+
+
+def _design_parts(geometry):
+    """Design values and ratings {C, C0} [N] of a geometry, computed once per geometry."""
+    key = repr(geometry)    # every field of the dataclass (arrays excluded: derived from the fields)
+    parts = _DESIGN_PARTS.get(key)
+    if parts is None:
+        g = geometry
+        C = ratings.dynamic_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha, g.b_m)
+        C0 = ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha)
+        parts = (design_values(g), {"C": C, "C0": C0})
+        if len(_DESIGN_PARTS) >= _DESIGN_PARTS_SIZE:
+            _DESIGN_PARTS.pop(next(iter(_DESIGN_PARTS)))
+        _DESIGN_PARTS[key] = parts
+    return parts
 
 
 def build_dataset(geometry, ops, results, config_yaml, settings):
     """Assemble the DATA.md Dataset of one bearing (design dim of length 1) over its cases.
+
+    Every array is filled in numpy first and the Dataset is created once from Variables
+    (:func:`_dataset`), the pandas indexes and the ratings of a geometry computed once (a
+    Dataset assembled from tuples, with its indexes, costs several ms per call).
 
     Parameters
     ----------
@@ -127,6 +247,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     settings : sim.api.simulation.SolverSettings
     """
     g = geometry
+    design, rating = _design_parts(g)
     sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 2, "component": len(COMPONENTS)}
     data = {}
     for name, (dims, units, long_name) in CASE_VARIABLES.items():
@@ -134,41 +255,17 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
             continue    # friction disabled: no torque variables, never placeholders
         arr = _case_array(name, dims, results, sizes)
         data[name] = xr.Variable(("design", "case") + dims, arr, {"units": units, "long_name": long_name})
-    C = ratings.dynamic_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha, g.b_m)
-    C0 = ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, g.ratings_alpha)
-    data["C"] = xr.Variable(("design",), [C], {"units": "N", "long_name": "ISO 281 dynamic load rating (2.14)"})
-    data["C0"] = xr.Variable(("design",), [C0], {"units": "N", "long_name": "ISO 281 static load rating (2.10)"})
-    coords = {
-        "race": ("race", RACES, {"long_name": "raceway"}),
-        "direction": ("direction", ["axial", "radial"], {"long_name": "inner-ring direction"}),
-        "component": ("component", COMPONENTS, {"long_name": "friction loss mechanism"}),
-        "roller": ("roller", np.arange(g.Z), {"long_name": "roller index by azimuth, 0 under Fr", "units": "1"}),
-        "slice": ("slice", np.arange(g.n_slices), {"long_name": "slice index from the large end", "units": "1"}),
-        "x_slice": ("slice", g.x_slice_from_large_end, {"units": "mm", "long_name": "slice centre from the large end"}),
-        **case_coords(ops),
-        "bearing_type": ("design", [g.type], {"long_name": "bearing type"}),
-    }
-    design_params = {"alpha": np.degrees(g.alpha), "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
-                     "Lwe": g.Lwe, "Z": g.Z}
-    if g.type == "TSRB":
-        design_params.update(PCR=g.PCR, kappa=g.kappa, aP=g.aP, aPk=g.aPk, aA=g.aA, PCR_LB=g.PCR_LB)
-    for name, value in design_params.items():
+    for name, value in rating.items():
+        data[name] = _var(("design",), [value], RATING_ATTRS[name])
+    coords, indexes = _dimension_coords(g.Z, g.n_slices)
+    coords["x_slice"] = _var("slice", g.x_slice_from_large_end, X_SLICE_ATTRS)
+    coords.update({name: _var(*value) for name, value in case_coords(ops).items()})
+    coords["bearing_type"] = _var("design", [g.type], {"long_name": "bearing type"})
+    for name, value in design.items():
         units, long_name = DESIGN_COORDS[name]
-        coords[name] = ("design", [value], {"units": units, "long_name": long_name})
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update({
-        "Conventions": "CF-1.10",
-        "title": f"{g.type} quasi-static load distribution and friction",
-        "package_version": package_version(),
-        "git_commit": git_commit(),
-        "config": config_yaml,
-        "solver": "quasi_static",
-        "solver_settings": str(settings),
-        "created": utc_now(),
-        "sources": ("thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004; ZhouHoeprich1991; PanHamrock1989; "
-                    "HamrockDowson1977; BairWiner1979; JohnsonTevaarwerk1977"),
-    })
-    return ds
+        coords[name] = _var("design", [value], {"units": units, "long_name": long_name})
+    title = f"{g.type} quasi-static load distribution and friction"
+    return _dataset(data, coords, indexes, provenance_attrs(title, config_yaml, settings))
 
 
 def write_netcdf_atomic(ds, path):
@@ -261,6 +358,9 @@ def combine_designs(datasets, extra_coords):
                                if name not in ds.coords})
         if "x_slice" in ds.coords:
             ds = ds.drop_vars("x_slice") if shared_x else ds.assign_coords(x_slice=ds.x_slice.expand_dims("design"))
+        elif x_slices and not shared_x:   # a failed design among unlike ones: no slices, NaN there
+            ds = ds.assign_coords(x_slice=(("design", "slice"), np.full((1, 0), np.nan), x_attrs),
+                                  slice=("slice", np.arange(0), SLICE_ATTRS))
         aligned.append(ds)
     out = xr.concat(aligned, dim="design", data_vars="minimal", coords="minimal", compat="override",
                     join="outer", fill_value=FILL_VALUES, combine_attrs="override")
@@ -271,7 +371,15 @@ def combine_designs(datasets, extra_coords):
     return out.assign_coords({name: ("design", values, attrs) for name, (values, attrs) in extra_coords.items()})
 
 
-def failure_table(rows):
+FAILURE_COLUMNS = {"design": ("1", "design index of the failed point", np.int32),
+                   "case": ("1", "case index of the failed point", np.int32),
+                   "job": ("1", "multirun job number of the failed point", np.int32),
+                   "overrides": (None, "command-line overrides of the job", str),
+                   "reason": (None, "why the point has no result: error, not converged, missing", str),
+                   "message": (None, "error message or solver status", str)}
+
+
+def failure_table(rows, columns=tuple(FAILURE_COLUMNS)):
     """The failed points of a sweep as variables on dimension ``failure``.
 
     Parameters
@@ -280,15 +388,152 @@ def failure_table(rows):
         Keys ``design``, ``case`` (indices into the sweep dataset), ``job`` (Hydra job number),
         ``overrides`` (the job's command-line overrides), ``reason`` ("error", "not converged"
         or "missing") and ``message``.
+    columns : sequence of str
+        The keys to write (``failed_<key>``), of :data:`FAILURE_COLUMNS`; all by default
+        (a batch has no job and no overrides).
     """
-    columns = {"design": ("1", "design index of the failed point", np.int32),
-               "case": ("1", "case index of the failed point", np.int32),
-               "job": ("1", "multirun job number of the failed point", np.int32),
-               "overrides": (None, "command-line overrides of the job", str),
-               "reason": (None, "why the point has no result: error, not converged, missing", str),
-               "message": (None, "error message or solver status", str)}
+    return xr.Dataset(_failure_variables(rows, columns))
+
+
+def _failure_variables(rows, columns):
     data = {}
-    for name, (units, long_name, dtype) in columns.items():
+    for name in columns:
+        units, long_name, dtype = FAILURE_COLUMNS[name]
         attrs = {"long_name": long_name} | ({"units": units} if units else {})
         data[f"failed_{name}"] = xr.Variable(("failure",), np.array([r[name] for r in rows], dtype=dtype), attrs)
-    return xr.Dataset(data)
+    return data
+
+
+# ------------------------------------------------------------------ a batch of designs in one go
+class DesignResult(NamedTuple):
+    """A simulated design: the arguments of :func:`build_dataset`."""
+
+    geometry: object
+    ops: list
+    results: list
+    config_yaml: str
+    settings: object
+
+
+class DesignFailure(NamedTuple):
+    """A design without a result: the arguments of :func:`failed_dataset`."""
+
+    bearing: dict
+    ops: list
+    config_yaml: str
+    message: str
+
+
+def _design_coordinates(design):
+    """Design coordinates (name -> value) of a design, as its single-design Dataset holds them."""
+    if isinstance(design, DesignResult):
+        return {"bearing_type": design.geometry.type, **_design_parts(design.geometry)[0]}
+    values = {"bearing_type": str(design.bearing.get("type"))}
+    for name in DESIGN_COORDS:
+        value = design.bearing.get(name)
+        values[name] = np.nan if value is None else value
+    return values
+
+
+def _case_key(op):
+    return tuple(float(getattr(op, c)) for c in CASE_COORDS)
+
+
+def build_batch_dataset(designs):
+    """One ``design`` x ``case`` Dataset (DATA.md) of many designs, built once from arrays.
+
+    Data and coordinates are those :func:`combine_designs` gives for the single-design Datasets
+    (:func:`build_dataset` of each :class:`DesignResult`, :func:`failed_dataset` of each
+    :class:`DesignFailure`) without extra coordinates: cases the union in order of first
+    appearance, NaN / ``converged = False`` where a design lacks a case, a variable or a
+    roller, ``x_slice`` on ``slice`` while all computed designs share it. Added: the resolved
+    config of every design (``design_config``) and the failure table (``failed_design``,
+    ``failed_case``, ``failed_reason`` "error" or "not converged", ``failed_message``; a design
+    without any case has one row with case -1). Attributes: the provenance of the first
+    computed design (``config`` its YAML), with the title of the batch.
+
+    Parameters
+    ----------
+    designs : list of DesignResult or DesignFailure
+    """
+    n_designs = len(designs)
+    keys = [[_case_key(op) for op in d.ops] for d in designs]
+    union = list(dict.fromkeys(k for ks in keys for k in ks))
+    index = {k: i for i, k in enumerate(union)}
+    n_cases = len(union)
+    computed = [d for d in designs if isinstance(d, DesignResult)]
+    sizes = {"race": 2, "direction": 2, "component": len(COMPONENTS),
+             "roller": max((d.geometry.Z for d in computed), default=0),
+             "slice": max((d.geometry.n_slices for d in computed), default=0)}
+    # data variables, in order of first appearance (as the single-design Datasets hold them)
+    names = []
+    for d in designs:
+        if isinstance(d, DesignFailure):
+            names.append("converged")
+            continue
+        names += [n for n in CASE_VARIABLES if n not in OPTIONAL_VARIABLES or any(n in r for r in d.results)]
+        names += ["C", "C0"]
+    names = list(dict.fromkeys(names))
+    arrays = {}
+    for name in names:
+        if name in RATING_ATTRS:
+            arrays[name] = np.full(n_designs, np.nan)
+            continue
+        dims = CASE_VARIABLES[name][0]
+        shape = (n_designs, n_cases) + tuple(sizes[dim] for dim in dims)
+        kind = INTEGER_OR_BOOL.get(name)
+        arrays[name] = np.full(shape, FILL_VALUES[name], dtype=kind) if kind else np.full(shape, np.nan)
+    rows = []
+    for i, (d, ks) in enumerate(zip(designs, keys)):
+        positions = [index[k] for k in ks]
+        if isinstance(d, DesignFailure):
+            rows += [{"design": i, "case": c, "reason": "error", "message": d.message} for c in positions or [-1]]
+            continue
+        for name, value in _design_parts(d.geometry)[1].items():
+            arrays[name][i] = value
+        for c, res in zip(positions, d.results):
+            for name, value in res.items():
+                target = arrays.get(name) if name in CASE_VARIABLES else None
+                if target is None:
+                    continue
+                value = np.asarray(value)
+                target[(i, c) + tuple(slice(0, n) for n in value.shape)] = value
+            if not res["converged"]:
+                rows.append({"design": i, "case": c, "reason": "not converged",
+                             "message": f"converged = False after {int(res['iterations'])} ring iterations"})
+    data = {}
+    for name in names:
+        dims, units, long_name = CASE_VARIABLES.get(name) or ((), None, None)
+        attrs = RATING_ATTRS[name] if name in RATING_ATTRS else {"units": units, "long_name": long_name}
+        full_dims = ("design",) if name in RATING_ATTRS else ("design", "case") + dims
+        data[name] = xr.Variable(full_dims, arrays[name], attrs)
+    data["design_config"] = _var("design", [d.config_yaml for d in designs],
+                                 {"long_name": "resolved config of the design (YAML), its load included"})
+    coords, indexes = {}, {}
+    if computed:
+        index_vars, indexes = _dimension_coords(sizes["roller"], sizes["slice"])
+        coords.update(index_vars)
+        x_slices = {tuple(d.geometry.x_slice_from_large_end.tolist()) for d in computed}
+        if len(x_slices) == 1:
+            coords["x_slice"] = _var("slice", computed[0].geometry.x_slice_from_large_end, X_SLICE_ATTRS)
+        else:
+            x = np.full((n_designs, sizes["slice"]), np.nan)
+            for i, d in enumerate(designs):
+                if isinstance(d, DesignResult):
+                    x[i, :d.geometry.n_slices] = d.geometry.x_slice_from_large_end
+            coords["x_slice"] = _var(("design", "slice"), x, X_SLICE_ATTRS)
+    for name, (units, long_name) in CASE_COORD_ATTRS.items():
+        coords[name] = _var("case", [k[CASE_COORDS.index(name)] for k in union],
+                            {"units": units, "long_name": long_name})
+    values = [_design_coordinates(d) for d in designs]
+    for name in dict.fromkeys(n for v in values for n in v):
+        sample = next(v[name] for v in values if name in v)   # the first design's sets the fill
+        missing = "" if np.asarray([sample]).dtype.kind in "OUS" else np.nan
+        attrs = {"long_name": "bearing type"} if name == "bearing_type" else dict(
+            zip(("units", "long_name"), DESIGN_COORDS[name]))
+        coords[name] = _var("design", [v.get(name, missing) for v in values], attrs)
+    first = computed[0] if computed else None
+    attrs = provenance_attrs(f"batch of {n_designs} designs x {n_cases} cases",
+                             (first or designs[0]).config_yaml, first.settings if first else "none: no design computed")
+    data.update(_failure_variables(rows, ("design", "case", "reason", "message")))
+    return _dataset(data, coords, indexes, attrs)

@@ -2,9 +2,29 @@
 
 ``simulate(cfg)`` is the public entry point (re-exported as ``sim.simulate``). It validates
 every input before any numerics run, solves each load case with the quasi-static solver and
-hands plain arrays to :mod:`sim.io`, the only builder of Datasets.
+hands plain arrays to :mod:`sim.io`, the only builder of Datasets. ``simulate_batch(cfgs)``
+runs many designs in worker processes into one ``design`` x ``case`` Dataset.
+
+Per-call overhead. A warm ``simulate`` of one combined case costs the physics (the load
+distribution twice and the traction kinematics) plus what surrounds it; that part is kept
+small by doing once per configuration what does not depend on the case:
+
+- the resolved config is read once per call (``OmegaConf.to_container``); its content
+  (``repr``) keys the caches (:data:`CACHE_SIZE` entries each), so equal content, in the same
+  object or a new one, reuses them and changed content (a new load, a mutated node) never does;
+- the provenance YAML (``OmegaConf.to_yaml``: the slow pure-Python YAML emitter) is kept per
+  top-level node: a call whose load alone changed (each case of a sweep) serialises its
+  ``load`` node only;
+- the bearing and friction models are kept per content of the nodes they read;
+- :func:`sim.io.build_dataset` creates the Dataset once from numpy arrays.
 """
+import concurrent.futures as cf
+import math
+import multiprocessing
+import os
+import sys
 import time
+from collections import OrderedDict
 
 from omegaconf import OmegaConf
 
@@ -14,8 +34,11 @@ from sim.api.friction_model import FrictionModel
 from sim.api.schema import validate
 from sim.errors import InputError
 from sim.geometry import Geometry
-from sim.io import build_dataset
+from sim.io import DesignFailure, DesignResult, build_batch_dataset, build_dataset
 from sim.physics.lubricant import Lubricant
+
+CACHE_SIZE = 128                      # configurations whose YAML and models are kept
+MODEL_KEYS = ("bearing", "material", "solver", "friction", "lubricant")   # what build_model/build_friction read
 
 
 def build_model(cfg):
@@ -66,6 +89,88 @@ def solve_case(model, friction, op, output_cfg):
     return res
 
 
+# ------------------------------------------------------------------ per-configuration caches
+class _Cache:
+    """Least-recently-used mapping of at most ``size`` entries (one per configuration content)."""
+
+    def __init__(self, size):
+        self.size, self.data = size, OrderedDict()
+
+    def get(self, key, make):
+        if key in self.data:
+            self.data.move_to_end(key)
+            return self.data[key]
+        value = make()                 # an exception caches nothing
+        self.data[key] = value
+        if len(self.data) > self.size:
+            self.data.popitem(last=False)
+        return value
+
+    def clear(self):
+        self.data.clear()
+
+
+_YAML = _Cache(8 * CACHE_SIZE)  # repr of (top-level key, resolved node) -> its block of the YAML
+_MODELS = _Cache(CACHE_SIZE)    # repr of its MODEL_KEYS nodes -> (BearingModel, FrictionModel or None)
+_VALID = _Cache(CACHE_SIZE)     # repr of a whole resolved config -> True once it passed the schema
+
+
+def resolved(cfg):
+    """The resolved config as plain containers, as ``OmegaConf.to_yaml`` sees it."""
+    return OmegaConf.to_container(cfg, resolve=True, enum_to_str=True)
+
+
+def _yaml_block(key, value):
+    return OmegaConf.to_yaml(OmegaConf.create({key: value}))
+
+
+def config_yaml(cfg, plain=None):
+    """``OmegaConf.to_yaml(cfg, resolve=True)``, each top-level node serialised once per content.
+
+    ``plain``: :func:`resolved` of ``cfg`` when the caller has it. ``to_yaml`` dumps exactly
+    that container, a block-style mapping whose top-level entries follow each other, each a
+    block of its own that depends on its key and node only; a block is serialised on the first
+    call with its content (``repr`` tells apart every difference in value, type, 17 and 17.0,
+    and key order) and reused after.
+    """
+    plain = resolved(cfg) if plain is None else plain
+    if not isinstance(plain, dict) or not plain:
+        return OmegaConf.to_yaml(cfg, resolve=True)
+    return "".join(_YAML.get(repr((key, value)), lambda: _yaml_block(key, value)) for key, value in plain.items())
+
+
+def build_models(cfg, plain=None):
+    """(:func:`build_model`, :func:`build_friction`) of ``cfg``, built once per content of the
+    config nodes they read (:data:`MODEL_KEYS`) and shared: both hold parameters only, and
+    every solve and evaluation allocates its own state."""
+    plain = resolved(cfg) if plain is None else plain
+
+    def make():
+        model = build_model(cfg)
+        return model, build_friction(cfg, model)
+
+    return _MODELS.get(repr([plain.get(key) for key in MODEL_KEYS]), make)
+
+
+def clear_caches():
+    """Forget the cached YAML and models (they are rebuilt on the next call)."""
+    _YAML.clear()
+    _MODELS.clear()
+    _VALID.clear()
+
+
+def _solve_design(cfg, case_slice=slice(None), plain=None):
+    """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config)."""
+    plain = resolved(cfg) if plain is None else plain
+    # every key against its schema (sim.config_schema): ConfigError before anything runs, once per content
+    _VALID.get(repr({k: v for k, v in plain.items() if k != "hydra"}), lambda: validate(cfg) or True)
+    model, friction = build_models(cfg, plain)
+    ops = operating_points(plain["load"])
+    output = plain["output"]
+    results = [solve_case(model, friction, op, output) for op in ops[case_slice]]
+    return model, ops, results, plain
+
+
 def simulate(cfg):
     """Run the configured bearing through every load case of ``cfg.load``.
 
@@ -79,9 +184,171 @@ def simulate(cfg):
     xarray.Dataset
         The result following DATA.md, dims ``design`` (1) and ``case``.
     """
-    validate(cfg)  # every key against its schema (sim.config_schema): ConfigError before anything runs
-    model = build_model(cfg)
-    friction = build_friction(cfg, model)
-    ops = operating_points(cfg.load)
-    results = [solve_case(model, friction, op, cfg.output) for op in ops]
-    return build_dataset(model.geometry, ops, results, OmegaConf.to_yaml(cfg, resolve=True), model.settings)
+    model, ops, results, plain = _solve_design(cfg)
+    return build_dataset(model.geometry, ops, results, config_yaml(cfg, plain), model.settings)
+
+
+# ------------------------------------------------------------------ many designs in worker processes
+def _run(cfg, plain, start, stop, with_yaml):
+    """Cases ``start:stop`` of one design (``plain``: its :func:`resolved` config): ("ok",
+    (geometry, settings, results, YAML or None)), or ("error", message): an exception fails the
+    design, as it fails :func:`simulate`."""
+    try:
+        model, _, results, plain = _solve_design(cfg, slice(start, stop), plain)
+        return "ok", (model.geometry, model.settings, results, config_yaml(cfg, plain) if with_yaml else None)
+    except Exception as exc:
+        return "error", f"{type(exc).__name__}: {exc}"
+
+
+_WORKER_CFGS = ()   # the configs of the batch and their resolved forms, in a worker process
+
+
+def _init_worker(cfgs, plains):
+    global _WORKER_CFGS
+    _WORKER_CFGS = tuple(zip(cfgs, plains))
+
+
+def _run_in_worker(design, start, stop, with_yaml):
+    return _run(*_WORKER_CFGS[design], start, stop, with_yaml)
+
+
+def _kind(plain):
+    """Designs of one kind run the same numba kernels: all but the bearing's numbers and the load."""
+    rest = {k: v for k, v in plain.items() if k not in ("bearing", "load", "hydra")}
+    return repr([(plain.get("bearing") or {}).get("type"), rest])
+
+
+_WARM = set()   # kinds whose kernels ran in this process (compiled, or loaded from numba's cache)
+
+
+def _warm_up(cfgs, plains, kinds):
+    """Run the first case of designs of each kind not yet warm here, until one converges (at
+    most 3 per kind), before the workers start.
+
+    A converged case runs every kernel of its kind (the friction kernels only run after the
+    load distribution converged), so they are compiled, or loaded from numba's on-disk cache,
+    once, here: forked workers inherit them, spawned ones load them from the cache, and no two
+    processes compile the same kernel at once.
+    """
+    tried = {}
+    for cfg, plain, kind in zip(cfgs, plains, kinds):
+        if kind is None or kind in _WARM or tried.get(kind, 0) >= 3:
+            continue
+        tried[kind] = tried.get(kind, 0) + 1
+        status, out = _run(cfg, plain, 0, 1, False)
+        if status == "ok" and all(res["converged"] for res in out[2]):
+            _WARM.add(kind)
+
+
+def _chunks(n_cases, workers, n_designs):
+    """Case ranges of one design's tasks: whole designs when there are at least two per worker
+    (fewest tasks, one model build each), else designs cut so that each worker gets about 4."""
+    pieces = 1 if n_designs >= 2 * workers else min(n_cases, math.ceil(4 * workers / n_designs))
+    size = max(1, math.ceil(n_cases / max(pieces, 1)))
+    return [(a, min(a + size, n_cases)) for a in range(0, n_cases, size)] or [(0, 0)]
+
+
+def default_workers():
+    """Cores this process may use."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:
+        return os.cpu_count() or 1
+
+
+START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"   # of the workers (_run_pool)
+
+
+def _run_pool(cfgs, plains, tasks, workers):
+    """Outcomes of ``tasks`` (design, start, stop, with_yaml) on ``workers`` processes, in order.
+
+    On Linux the workers are forked (they start with the kernels warmed here and the configs,
+    nothing pickled); elsewhere spawned (fork is unsafe on macOS, absent on Windows: they load
+    the kernels from numba's on-disk cache, and the configs are pickled once per worker). A
+    worker that dies fails the designs of its unfinished tasks.
+    """
+    outcomes = [None] * len(tasks)
+    with cf.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context(START_METHOD),
+                                initializer=_init_worker, initargs=(cfgs, plains)) as pool:
+        futures = {pool.submit(_run_in_worker, *task): i for i, task in enumerate(tasks)}
+        for future in cf.as_completed(futures):
+            try:
+                outcomes[futures[future]] = future.result()
+            except Exception as exc:   # BrokenProcessPool
+                outcomes[futures[future]] = ("error", f"{type(exc).__name__}: {exc}")
+    return outcomes
+
+
+def _provenance_text(cfg, plain):
+    """The YAML of a design that failed: resolved if it resolves, else as written."""
+    return config_yaml(cfg, plain) if plain is not None else OmegaConf.to_yaml(cfg)
+
+
+def simulate_batch(cfgs, workers=None):
+    """Simulate many designs, each over the load cases of its own config, into one Dataset.
+
+    Parameters
+    ----------
+    cfgs : sequence of omegaconf.DictConfig
+        One composed config per design (``sim.load_config``); they may differ in any key
+        (bearing, load grid, friction, solver, ...).
+    workers : int, optional
+        Processes; None: one per core this process may use; 1: everything in this process.
+        Never more than there are tasks (whole designs, or parts of their load grids when
+        there are fewer than two designs per worker). Before the workers start, one case of
+        each kind of design runs here (:func:`_warm_up`), once per process.
+
+    Returns
+    -------
+    xarray.Dataset
+        dims ``design`` x ``case`` (DATA.md), laid out as :func:`sim.io.combine_designs`
+        lays out the per-design :func:`simulate` results (:func:`sim.io.build_batch_dataset`:
+        cases the union in order of first appearance, NaN and ``converged = False`` where a
+        design lacks one), the resolved config of each design in ``design_config`` and every
+        point without a valid result a row of the ``failed_*`` table (reason ``error`` or
+        ``not converged``). A design that raises (impossible geometry, bad input, a worker
+        that died) is recorded, not raised: its slot holds its config's geometry inputs, NaN
+        and ``converged = False``.
+
+    Notes
+    -----
+    Processes, not threads or numba ``prange``: the kernels release the GIL, but about 15 %
+    of a combined case (continuation, the friction fixed point, the outputs) and all of a
+    design's setup (config, models, YAML) is Python under the GIL, which caps two threads at
+    about 1.7x; a ``prange`` over designs would need the whole case inside one kernel.
+    """
+    cfgs = list(cfgs)
+    if not cfgs:
+        raise InputError("simulate_batch needs at least one config")
+    n = len(cfgs)
+    plains, ops, failed = [None] * n, [[] for _ in range(n)], {}
+    for d, cfg in enumerate(cfgs):
+        try:
+            plains[d] = resolved(cfg)
+            ops[d] = operating_points(plains[d]["load"])
+        except Exception as exc:
+            failed[d] = f"{type(exc).__name__}: {exc}"
+    workers = default_workers() if workers is None else max(1, int(workers))
+    tasks = [(d, a, b, a == 0) for d in range(n) if d not in failed for a, b in _chunks(len(ops[d]), workers, n)]
+    workers = min(workers, len(tasks))
+    if workers <= 1:
+        outcomes = [_run(cfgs[d], plains[d], a, b, with_yaml) for d, a, b, with_yaml in tasks]
+    else:
+        _warm_up(cfgs, plains, [None if d in failed else _kind(plains[d]) for d in range(n)])
+        outcomes = _run_pool(cfgs, plains, tasks, workers)
+    parts = {}
+    for (d, *_), (status, out) in zip(tasks, outcomes):
+        if status == "error":
+            failed.setdefault(d, out)
+        else:
+            parts.setdefault(d, []).append(out)
+    designs = []
+    for d, cfg in enumerate(cfgs):
+        if d in failed:
+            bearing = (plains[d] or {}).get("bearing") or {}
+            designs.append(DesignFailure(bearing, ops[d], _provenance_text(cfg, plains[d]), failed[d]))
+        else:
+            geometry, settings, _, text = parts[d][0]
+            designs.append(DesignResult(geometry, ops[d], [res for part in parts[d] for res in part[2]], text,
+                                        settings))
+    return build_batch_dataset(designs)
