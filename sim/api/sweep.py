@@ -598,7 +598,8 @@ def write_result(ds, path, cfg=None):
         return io.write_netcdf_atomic(ds, path)
     except (OSError, RuntimeError) as exc:  # netCDF4 reports a full disk as RuntimeError "HDF error"
         try:
-            free = f"{shutil.disk_usage(Path(path).parent).free / 1e6:.1f} MB free there"
+            free = shutil.disk_usage(Path(path).parent).free
+            free = f"{free / 1e3:.0f} kB free there" if free < 1e7 else f"{free / 1e6:.0f} MB free there"
         except OSError:
             free = "its folder cannot be read"
         cache = cfg.output.cache_dir if cfg is not None else None
