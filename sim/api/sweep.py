@@ -12,7 +12,11 @@ Result cache (nothing lost, nothing redone)
     Failed and unconverged cases are never cached, so a re-run recomputes them.
     The cache does not depend on the sweep folder: the same command in a new folder (Hydra's
     ``${now:...}``), an overlapping sweep or a single run reuses every finished case, and a
-    killed sweep loses at most the cases that were being computed.
+    killed sweep loses at most the cases that were being computed. Runs sharing the cache at
+    the same time claim each case they compute (``<key>.claim``, :func:`compute_case`), so no
+    case is computed twice; temporaries and claims of interrupted runs are removed by the next
+    run (:func:`remove_stale_files`). A cache that cannot be written is reported once; the run
+    goes on.
 
 Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
     Before the first job the callback composes every job's config, refuses the whole sweep if
@@ -22,9 +26,11 @@ Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
     before parallel workers start: no two processes compile the same kernel at once. Each job
     writes ``<sweep dir>/<job>/result.nc`` atomically, or ``failed.json`` with the error (an
     impossible geometry fails that point, not the sweep) and logs one line. After the last job
-    :func:`collect` merges the jobs into ``<sweep dir>/sweep.nc``.
+    :func:`collect` merges the jobs into ``<sweep dir>/sweep.nc``; a job whose files are
+    unreadable or incomplete is recorded as damaged, never sinking the sweep.
 
-Command line: ``python -m sim.api.sweep collect DIR`` re-collects any sweep folder.
+Command line: ``python -m sim.api.sweep collect DIR`` re-collects any sweep folder (exit 1 with
+a one-line summary when a job is missing or damaged, 2 when DIR is not a sweep folder).
 """
 import argparse
 import base64

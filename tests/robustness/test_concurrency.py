@@ -7,11 +7,13 @@ and loads them. A claim whose process is gone is broken. Tested on the claim fun
 """
 import collections
 import json
+import os
 import re
 import subprocess
 import sys
 import threading
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,7 +23,7 @@ import sim
 import sim.api.sweep as sweep
 from sim.api import operating_points
 from sim.api.sweep import CACHE_SUFFIX, CLAIM_SUFFIX, HOST_TAG, cache_file, compute_case, encode_case, run_cases
-from tests.robustness.common import FAST, run
+from tests.robustness.common import FAST, REPO
 
 GRID = ["load.Fa=[3000,4000]", "load.Fr=[0,1000]"]
 
@@ -121,13 +123,7 @@ def test_claim_of_a_live_process_is_waited_for_and_its_result_loaded(cfg, counte
     assert counted == [(o.Fa, o.Fr) for i, o in enumerate(ops) if i != 1]
     assert n["cached"] == 1 and n["computed"] == 3
     np.testing.assert_array_equal(ds.pmax.values[0, 1], done.pmax.values[0, 0])
-    assert not list((cfg_cache(cfg)).rglob(f"*{CLAIM_SUFFIX}"))
-
-
-def cfg_cache(cfg):
-    from pathlib import Path
-
-    return Path(cfg.output.cache_dir)
+    assert not list(Path(cfg.output.cache_dir).rglob(f"*{CLAIM_SUFFIX}"))
 
 
 def test_claim_released_without_a_result_is_computed_here(cfg, counted, other):
@@ -157,7 +153,7 @@ def test_two_identical_sweeps_at_once_compute_each_case_once(tmp_path):
                 f"hydra.sweep.dir={tmp_path / name}", "hydra.verbose=[sim.api.sweep]"]
         procs.append(subprocess.Popen([sys.executable, *args], cwd=tmp_path, stdout=subprocess.PIPE,
                                       stderr=subprocess.STDOUT, text=True,
-                                      env=dict(__import__("os").environ, PYTHONPATH=str(sweep.SIM_ROOT.parent))))
+                                      env=dict(os.environ, PYTHONPATH=str(REPO))))
     logs = [p.communicate(timeout=900)[0] for p in procs]
     assert [p.returncode for p in procs] == [0, 0], "\n".join(log[-3000:] for log in logs)
     computed = [re.findall(r"computed case ([0-9a-f]{64}) ", log) for log in logs]

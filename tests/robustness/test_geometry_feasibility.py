@@ -16,7 +16,6 @@ reached. The issue's reproducers (Z = 200, PCR = 1e30) are tested by name.
 import math
 import re
 
-import numpy as np
 import pytest
 from omegaconf import OmegaConf
 
