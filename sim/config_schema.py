@@ -154,8 +154,9 @@ class SurfaceConfig:
 
 @dataclass
 class BearingConfig:
-    """TRB or TSRB geometry (thesis Tables 4.2, 6.1, 7.1-7.5). Bounds that combine keys (a roller
-    that fits, aPk + aP < Lwe, PCR spanning the roller) are :mod:`sim.geometry`'s."""
+    """TRB or TSRB geometry (thesis Tables 4.2, 6.1, 7.1-7.5). Bounds that combine keys (rollers
+    that fit on the pitch circle with ``cage_web_ratio``, rings with a section, aPk + aP < Lwe, PCR
+    spanning the roller) are :mod:`sim.geometry`'s (``Geometry.RULES``)."""
 
     type: str = key(Choice(BEARING_TYPES))
     alpha: Any = key(Number(0.0, 60.0, True, True, units="deg"))
@@ -168,12 +169,17 @@ class BearingConfig:
     Dpw: Any = key(mm())
     Dwe: Any = key(mm())
     Lwe: Any = key(mm())
-    PCR: Any = key(mm(), only="TSRB")
+    PCR: Any = key(Number(0.0, 1e5, low_open=True, units="mm"), only="TSRB",
+                   note="engineering choice: at 1e5 mm a 100 mm roller is straight to 13 um, and beyond it the "
+                        "float64 round-off of circles centred PCR away (1e-16 PCR) grows towards the contact approach")
     kappa: Any = key(Number(0.0, 1.0, True, True), only="TSRB",
                      note="kappa = 1 gives PCR_LB = PCR: no two-point contact")
     r: Any = key(mm())
     R: Any = key(mm())
     Z: Any = key(Number(3, integer=True))
+    cage_web_ratio: Any = key(Number(0.0, 0.5, units="1"),
+                              note="least cage web between neighbouring rollers at the pitch circle, in roller "
+                                   "diameters; sim.geometry refuses a Z that leaves less")
     b_m: Any = key(Number(0.0, low_open=True))
     crown_coefficient: Any = key(Number(0.0, 0.01, True, True), only="TRB")
     roller_end_radius_ratio: Any = key(Number(0.3, 1.0, low_open=True), only="TRB")

@@ -111,11 +111,40 @@ def log_crown_drop(x, Dwe, Lwe, coefficient):
     return coefficient * Dwe * np.log(1.0 / (1.0 - t))
 
 
-def _require(condition, name, value, bound):
-    """Raise GeometryError naming the config key (``bearing.`` unless the name carries its group)."""
+def _require(condition, name, value, bound, rule, context="", limit=None):
+    """Raise GeometryError naming the config key (``bearing.`` unless the name carries its group).
+
+    ``rule`` names the feasibility rule (a key of ``Geometry.RULES``); ``context`` lists the
+    other keys of the rule with their values, so that whichever of them was changed is named
+    too; ``limit`` is the bound on the blamed key as a number, where it has a closed form. The
+    error carries ``key``, ``rule`` and ``limit`` as attributes.
+    """
     if not condition:
         key = name if "." in name else f"bearing.{name}"
-        raise GeometryError(f"{key} = {value!r} is impossible: it must be {bound}")
+        err = GeometryError(f"{key} = {value!r} is impossible: it must be {bound}"
+                            + (f" ({context})" if context else ""))
+        err.key, err.rule, err.limit = key, rule, limit
+        raise err
+
+
+def max_rollers(Dpw, Dwe, web_ratio):
+    """Most rollers of diameter Dwe that fit on the pitch circle Dpw with a cage web of web_ratio Dwe.
+
+    Neighbouring rollers' mid-length circles (diameter Dwe, centres on the pitch circle) are a
+    chord Dpw sin(pi/Z) apart; the cage web between them needs web_ratio Dwe, so Z fits when
+    Dpw sin(pi/Z) >= (1 + web_ratio) Dwe. Tapered rollers share the cone apex on the bearing
+    axis, so the angular pitch they need is the same along the whole roller; crowned rollers lie
+    inside their cone. Returns 0 when no Z >= 2 fits.
+    """
+    need = (1.0 + web_ratio) * Dwe
+    if need >= Dpw:
+        return 0
+    z = int(np.pi / np.arcsin(need / Dpw))
+    while z > 0 and Dpw * np.sin(np.pi / z) < need:  # round-off at the boundary: the inequality decides
+        z -= 1
+    while Dpw * np.sin(np.pi / (z + 1)) >= need:
+        z += 1
+    return z
 
 
 @dataclass(frozen=True)
@@ -136,6 +165,8 @@ class Geometry:
     R: float
     Z: int
     b_m: float
+    #: least cage web between neighbouring rollers at the pitch circle, in roller diameters [1]
+    cage_web_ratio: float
     #: contact angle of the ISO 281 factors and ratings [deg]. TRB: derived, the cup (outer
     #: raceway) angle alpha + gamma, as ISO 281 / ISO 355 define the nominal contact angle of
     #: tapered roller bearings; TSRB: configured (ISO 281 has no TSRB; thesis Table 6.2 rates
@@ -183,40 +214,102 @@ class Geometry:
             extra["ratings_alpha"] = float(np.degrees(alpha + gamma))  # ISO 281: the cup angle
         g = cls(type=kind, alpha=alpha, gamma=gamma, Dpw=Dpw, Dwe=Dwe,
                 Lwe=float(b["Lwe"]), B=float(b["B"]), r=float(b["r"]), R=float(b["R"]), Z=int(b["Z"]),
-                b_m=float(b["b_m"]), E=E, nu=nu, density=rho * 1e-12, n_slices=int(n_slices), **extra)
+                b_m=float(b["b_m"]), cage_web_ratio=float(b["cage_web_ratio"]), E=E, nu=nu, density=rho * 1e-12,
+                n_slices=int(n_slices), **extra)
         g._check()
         object.__setattr__(g, "arrays", g._build_arrays())
         return g
 
-    def _check(self):
-        """Refuse geometry that cannot exist (MODEL.md 2), naming parameter and bound.
+    #: every feasibility rule of :meth:`_check`: name -> (blamed key, the keys it combines). The
+    #: TSRB rules use the crowned profile, the TRB rules its rib and roller-end sphere.
+    RULES = {
+        "Dwe_fit": ("Dwe", ("Dwe", "Dpw", "cage_web_ratio")),
+        "Z_fit": ("Z", ("Z", "Dwe", "Dpw", "cage_web_ratio")),
+        "PCR_span": ("PCR", ("PCR", "Lwe", "alpha", "Dwe", "Dpw")),
+        "aPk_in_roller": ("aPk", ("aPk", "aP", "Lwe")),
+        "end_radii": ("PCR", ("PCR", "Lwe", "alpha", "Dwe", "Dpw")),
+        "rib_on_end_face": ("rib_contact_height_ratio",
+                            ("rib_contact_height_ratio", "Dwe", "Lwe", "alpha", "Dpw", "crown_coefficient")),
+        "end_sphere_reaches_rib": ("roller_end_radius_ratio",
+                                   ("roller_end_radius_ratio", "rib_contact_height_ratio", "Dwe", "Lwe", "alpha",
+                                    "Dpw", "crown_coefficient")),
+        "outer_ring_section": ("R", ("R", "Dpw", "Dwe", "Lwe", "alpha", "PCR")),
+        "inner_ring_section": ("r", ("r", "Dpw", "Dwe", "Lwe", "alpha", "PCR")),
+        "ring_width": ("B", ("B", "Lwe", "Dwe", "alpha")),
+    }
 
-        Only bounds that combine keys: each key's own range is the schema's, checked in
-        :meth:`from_config`.
+    def _with(self, *names):
+        """'Dpw = 60.0, Dwe = 10.0': the given keys with their values (angles in deg, as configured)."""
+        shown = {"alpha": float(np.degrees(self.alpha))}
+        return ", ".join(f"{n} = {shown.get(n, getattr(self, n))!r}" for n in names)
+
+    def _check(self):
+        """Refuse geometry that cannot exist (MODEL.md 2), naming parameter, value and bound.
+
+        Only bounds that combine keys (:attr:`RULES`): each key's own range is the schema's,
+        checked in :meth:`from_config`. Checked in order, so that a rule only sees what the
+        earlier ones made well defined (the end radii only once the crown spans the roller):
+
+        - rollers fit on the pitch circle with the cage's least web (:func:`max_rollers`): Z at
+          most the number that fits, and at least three must fit (else Dwe is blamed);
+        - TSRB: the crown circle spans the roller, the contact points lie on it, both end
+          radii exceed 0.1 Dwe;
+        - TRB: the rib contact lies on the large end face and the roller-end sphere reaches it;
+        - both rings have a positive section: the outer raceway stays inside the outside
+          radius R, the inner raceway outside the bore radius r (raceways taken as the roller
+          envelope at its ends; the TRB's uncrowned cone); the roller's axial extent fits in B.
         """
         half = 0.5 * self.Lwe
-        _require(self.Dwe < self.Dpw, "Dwe", self.Dwe, f"< Dpw = {self.Dpw}")
-        _require(self.r < 0.5 * self.Dpw, "r", self.r, f"< Dpw/2 = {0.5 * self.Dpw}")
-        _require(0.5 * self.Dpw < self.R, "R", self.R, f"> Dpw/2 = {0.5 * self.Dpw}")
+        web = self.cage_web_ratio
+        fits = max_rollers(self.Dpw, self.Dwe, web)
+        fit_context = (f"rollers of Dwe = {self.Dwe!r} mm with the cage's least web cage_web_ratio Dwe = "
+                       f"{web * self.Dwe:.3f} mm on the pitch circle Dpw = {self.Dpw!r} mm: "
+                       f"Dpw sin(pi/Z) >= (1 + cage_web_ratio) Dwe, cage_web_ratio = {web!r}")
+        _require(fits >= 3, "Dwe", self.Dwe,
+                 f"<= Dpw sin(pi/3) / (1 + cage_web_ratio) = {self.Dpw * np.sin(np.pi / 3) / (1 + web):.3f} mm "
+                 "for the fewest rollers allowed, 3, to fit", "Dwe_fit", fit_context,
+                 self.Dpw * np.sin(np.pi / 3) / (1 + web))
+        _require(self.Z <= fits, "Z", self.Z, f"<= {fits}, the most that fit", "Z_fit", fit_context, fits)
         if self.type == "TSRB":
             bound = half / (1.0 - np.sin(self.gamma))
             _require(self.PCR > bound, "PCR", self.PCR,
-                     f"> Lwe/(2 (1 - sin(gamma))) = {bound:.3f} (the crown circle must span the roller)")
+                     f"> Lwe/(2 (1 - sin(gamma))) = {bound:.3f} (the crown circle must span the roller)", "PCR_span",
+                     self._with("Lwe", "alpha", "Dwe", "Dpw") + f", gamma = {np.degrees(self.gamma):.3f} deg", bound)
             _require(self.aPk + self.aP < self.Lwe, "aPk", self.aPk,
-                     f"< Lwe - aP = {self.Lwe - self.aP} (second contact point inside the roller)")
+                     f"< Lwe - aP = {self.Lwe - self.aP} (second contact point inside the roller)", "aPk_in_roller",
+                     self._with("Lwe", "aP"), self.Lwe - self.aP)
             rho_ends = self.roller_radius(np.array([-half, half]))
             _require(rho_ends.min() > 0.1 * self.Dwe, "PCR", self.PCR,
-                     f"large enough that both roller end radii exceed 0.1 Dwe (now {rho_ends.min():.3f} mm)")
+                     f"large enough that both roller end radii exceed 0.1 Dwe = {0.1 * self.Dwe:.3f} mm "
+                     f"(now {rho_ends.min():.3f} mm)", "end_radii", self._with("Lwe", "Dwe", "alpha", "Dpw"))
+        else:
+            rho_large = float(self.roller_radius(half * (1 - 1e-9)))
+            _require(self.rib_contact_height_ratio * self.Dwe < rho_large, "rib_contact_height_ratio",
+                     self.rib_contact_height_ratio,
+                     f"< {rho_large / self.Dwe:.4f}, the large-end radius over Dwe (the rib contact must lie on the "
+                     "roller end face)", "rib_on_end_face",
+                     self._with("Dwe", "Lwe", "crown_coefficient", "alpha", "Dpw"), rho_large / self.Dwe)
+            reach = (rho_large - self.rib_contact_height_ratio * self.Dwe) / (self.apex_distance + half)
+            _require(self.roller_end_radius_ratio > reach, "roller_end_radius_ratio", self.roller_end_radius_ratio,
+                     f"> {reach:.4f} (the roller-end sphere, radius ratio x (apex distance + Lwe/2), must reach the "
+                     "rib contact)", "end_sphere_reaches_rib",
+                     self._with("rib_contact_height_ratio", "Dwe", "Lwe", "alpha", "Dpw", "crown_coefficient"), reach)
         # the roller must fit between the rings and inside the width
         x_end = np.array([-half, half])
         # uncrowned cone for the TRB (its logarithmic drop is unbounded at the very ends)
         rho_end = self.roller_radius(x_end) if self.type == "TSRB" else 0.5 * self.Dwe + x_end * np.tan(self.gamma)
         r_out = 0.5 * self.Dpw + x_end * np.sin(self.alpha) + rho_end * np.cos(self.alpha)
         r_in = 0.5 * self.Dpw + x_end * np.sin(self.alpha) - rho_end * np.cos(self.alpha)
-        _require(r_out.max() < self.R, "R", self.R, f"> {r_out.max():.3f} mm (outer raceway radius at the large end)")
-        _require(r_in.min() > self.r, "r", self.r, f"< {r_in.min():.3f} mm (inner raceway radius at the small end)")
+        roller = self._with("Dpw", "Dwe", "Lwe", "alpha") + (f", PCR = {self.PCR!r}" if self.type == "TSRB" else "")
+        _require(r_out.max() < self.R, "R", self.R,
+                 f"> {r_out.max():.3f} mm (outer raceway radius at the large end: the outer ring needs a section)",
+                 "outer_ring_section", roller, r_out.max())
+        _require(r_in.min() > self.r, "r", self.r,
+                 f"< {r_in.min():.3f} mm (inner raceway radius at the small end: the inner ring needs a section)",
+                 "inner_ring_section", roller, r_in.min())
         axial = self.Lwe * np.cos(self.alpha) + self.Dwe * np.sin(self.alpha)
-        _require(axial < self.B, "B", self.B, f"> {axial:.3f} mm (axial extent of the roller)")
+        _require(axial < self.B, "B", self.B, f"> {axial:.3f} mm (axial extent of the roller)", "ring_width",
+                 self._with("Lwe", "Dwe", "alpha"), axial)
 
     # ------------------------------------------------------------------ derived values
     @property

@@ -9,7 +9,14 @@ A single run writes ``result.nc`` in Hydra's run directory and prints a summary;
 from the result cache when already computed (:mod:`sim.api.sweep`). A multirun job writes its
 result (or ``failed.json``) in its job folder and logs one line; ``sweep.nc`` follows the
 last job. Any ``bearing.<param>=`` override works (e.g. ``bearing.PCR=120``).
+
+Exit status (one error path, :mod:`sim.api.cli`): 0 when every case converged; 1 when some
+did not (written with ``converged = False``) or the result file cannot be written (one line
+naming the file; the converged cases stay in the result cache); 2 for refused input (one line
+``error: ...`` naming the key, its value and the allowed range or bound; no run folder is
+left behind); any other exception is a bug and keeps its traceback (exit 1).
 """
+import shutil
 import sys
 from pathlib import Path
 
@@ -18,8 +25,8 @@ from hydra.core.hydra_config import HydraConfig
 from hydra.types import RunMode
 from omegaconf import DictConfig
 
-from sim.io import write_netcdf_atomic
-from sim.api.sweep import run_cases, run_job
+from sim.api.cli import PROJECT_ERRORS, refuse
+from sim.api.sweep import NEW_RUN_DIRS, WriteError, remove_stale_files, run_cases, run_job, write_result
 
 
 def friction_summary(case):
@@ -56,6 +63,15 @@ def summary(ds):
     return "\n".join(lines)
 
 
+def _discard_run_dir(out_dir, job_name):
+    """Remove the run folder Hydra created for a run that was then refused, if it holds nothing
+    but Hydra's own files (``.hydra/`` and the log)."""
+    if str(out_dir.resolve()) not in NEW_RUN_DIRS:
+        return
+    if {p.name for p in out_dir.iterdir()} <= {".hydra", f"{job_name}.log"}:
+        shutil.rmtree(out_dir, ignore_errors=True)
+
+
 @hydra.main(config_path="../conf", config_name="config", version_base="1.3")
 def main(cfg: DictConfig) -> None:
     hc = HydraConfig.get()
@@ -63,8 +79,16 @@ def main(cfg: DictConfig) -> None:
     if hc.mode == RunMode.MULTIRUN:
         run_job(cfg, out_dir, hc.job.num, list(hc.overrides.task))
         return
-    ds, n = run_cases(cfg)
-    out = write_netcdf_atomic(ds, out_dir / cfg.output.file)
+    remove_stale_files((out_dir / cfg.output.file).parent)   # an interrupted write into a re-used run folder
+    try:
+        ds, n = run_cases(cfg)   # the input was checked before the run folder existed (SweepCallback.on_run_start)
+    except PROJECT_ERRORS as exc:
+        _discard_run_dir(out_dir, hc.job.name)
+        refuse(exc)
+    try:
+        out = write_result(ds, out_dir / cfg.output.file, cfg)
+    except WriteError as exc:
+        refuse(exc, status=1)
     print(summary(ds))
     print(f"written: {out} ({n['cases']} cases, {n['cached']} from the cache)")
     if not bool(ds.converged.all()):

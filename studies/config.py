@@ -9,9 +9,12 @@ import importlib.util
 import math
 from pathlib import Path
 
+from hydra.errors import HydraException
 from omegaconf import OmegaConf
+from omegaconf.errors import OmegaConfBaseException
 
 import sim
+from sim.api import GeometryError, InputError
 
 SAMPLERS = ("tpe", "gp", "nsga2")
 DESIGN_PARAMETERS = ("PCR", "kappa", "aP", "aPk", "alpha")
@@ -64,20 +67,57 @@ def simulation_overrides(overrides):
     return out
 
 
+def _composed(overrides):
+    """``sim.load_config(overrides)``; a composition error (unknown key, bad override syntax, missing
+    config) is a StudyConfigError with Hydra's message on one line."""
+    try:
+        return sim.load_config(overrides)
+    except (HydraException, OmegaConfBaseException) as err:
+        cause = f" ({' '.join(str(err.__cause__).split())})" if err.__cause__ else ""
+        raise StudyConfigError(" ".join(str(err).split()) + cause) from err
+
+
 def compose(overrides=None):
-    """Root config (simulation groups + ``study``) from command-line style overrides; validated."""
+    """Root config (simulation groups + ``study``) from command-line style overrides; validated,
+    the simulations of the study's bearings at its load case included (:func:`check_simulations`),
+    before anything is written."""
     simulation_overrides(overrides)
-    cfg = sim.load_config(study_overrides(overrides))
+    cfg = _composed(study_overrides(overrides))
     validate(cfg.study)
+    check_simulations(cfg.study, overrides)
     return cfg
 
 
 def simulation_config(study, bearing, overrides=None):
     """Composed simulation config of ``bearing`` (a conf/bearing name) at the study's load case."""
-    cfg = sim.load_config([f"bearing={bearing}", f"lubricant={study.lubricant}", *simulation_overrides(overrides)])
+    cfg = _composed([f"bearing={bearing}", f"lubricant={study.lubricant}", *simulation_overrides(overrides)])
     for key in LOAD_KEYS:
         cfg.load[key] = float(study.load[key])
     return cfg
+
+
+def check_simulations(study, overrides=None):
+    """Check the simulation of each bearing of the study (its design template, the reference TRB,
+    the thesis design) at the study's load case as a run checks its input, without computing
+    (:func:`sim.api.sweep.preflight`: schema ranges, geometry, friction inputs).
+
+    Raises
+    ------
+    StudyConfigError
+        Naming each problem; a load value is named as the study key that sets it
+        (``study.load.Fa = -5.0 is outside the allowed range: ...``).
+    """
+    from sim.api.sweep import preflight
+
+    for role in dict.fromkeys(("bearing", "reference_trb", "thesis_design")):
+        name = study[role]
+        try:
+            preflight(simulation_config(study, name, overrides))
+        except (InputError, GeometryError) as err:
+            lines = [f"study.{line}" if line.startswith("load.")
+                     else f"{line} (in the simulation of study.{role} = {name!r})"
+                     for line in str(err).splitlines() if line.strip()]
+            raise StudyConfigError("\n".join(lines)) from err
 
 
 def output_dir(study):

@@ -8,17 +8,53 @@ of thesis 7.4 against TRB 31313 and Table 7.4's design), resuming from the study
     python -m studies.optimize study.sampler=nsga2 study.budget.max_simulations=200
     python -m studies.optimize study.objective=pmax study.name=pinion_pmax
 
-Exit status 0 with a verified feasible design, 1 when none was found, 2 for a bad config.
+Exit status 0 with a verified feasible design, 1 when none was found, 2 for a bad config: one
+line ``error: ...`` on stderr naming the key, its value and the allowed range, before the study
+folder is made (a folder made for a study refused later, e.g. when the reference TRB gives no
+result at the load case, is removed again while empty). Any other exception keeps its traceback.
 """
 import argparse
 import sys
 import time
+from pathlib import Path
 
 import optuna
 
-from studies.config import StudyConfigError, compose
+from sim.api.cli import PROJECT_ERRORS, refused
+from studies.config import LOAD_KEYS, StudyConfigError, compose, output_dir
 from studies.loop import DesignSearch
 from studies.report import write_report
+
+STUDY_ERRORS = PROJECT_ERRORS + (StudyConfigError,)
+
+
+def _new_folders(path):
+    """``path`` and those of its parents that do not exist yet, deepest first."""
+    path = Path(path).absolute()
+    new = []
+    while not path.exists():
+        new.append(path)
+        path = path.parent
+    return new
+
+
+def _remove_if_empty(folders):
+    """Remove the folders (deepest first) that hold nothing, i.e. that a refused study made."""
+    for folder in folders:
+        try:
+            folder.rmdir()
+        except OSError:
+            return
+
+
+def _reference_failure(search, study):
+    """Message naming the load case when a reference simulation gave no result ('' otherwise)."""
+    for label, ref in search.references.items():
+        if ref.record["status"] != "ok":
+            load = ", ".join(f"{key} = {float(study.load[key])!r}" for key in LOAD_KEYS)
+            return (f"the {label} {ref.bearing} gives no result at the study's load case study.load ({load}): "
+                    f"{ref.record['status']}: {ref.record['message']}; choose another study.load")
+    return ""
 
 
 def main(argv=None):
@@ -30,14 +66,21 @@ def main(argv=None):
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     t0 = time.perf_counter()
     try:
-        cfg = compose(args.overrides)
+        cfg = compose(args.overrides)   # every input checked: nothing is written before this passes
+    except STUDY_ERRORS as err:
+        return refused(err)
+    new = _new_folders(output_dir(cfg.study))
+    try:
         search = DesignSearch(cfg, args.overrides, log=lambda msg: print(f"[{time.perf_counter() - t0:6.1f} s] {msg}",
                                                                         flush=True))
-        search.run_references()
-    except StudyConfigError as err:
-        print(f"error: {err}", file=sys.stderr)
-        return 2
-    ds, reason = search.run()
+        try:
+            search.run_references()
+        except StudyConfigError as err:
+            raise StudyConfigError(_reference_failure(search, cfg.study) or str(err)) from err
+        ds, reason = search.run()
+    except STUDY_ERRORS as err:
+        _remove_if_empty(new)
+        return refused(err)
     print(write_report(search, ds, reason))
     print(f"\nwritten to {search.out}/ in {time.perf_counter() - t0:.1f} s")
     _, key = search.best(ds)

@@ -12,8 +12,12 @@ built or solved keeps its place in the dataset with its error in the failure tab
 are missing and its legend entry says "no result". Redraw the figures of a finished sweep:
 
     python -m studies.sensitivity outputs/sensitivity/<date>/<time>/sweep.nc
+
+A path that is not a readable sensitivity ``sweep.nc`` is refused with one line ``error: ...``
+and exit status 2 (:mod:`sim.api.cli`).
 """
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -22,7 +26,9 @@ from matplotlib.figure import Figure
 from omegaconf import OmegaConf
 
 from sim import CONF_DIR
+from sim.api import InputError
 from sim.api.cases import operating_points
+from sim.api.cli import run
 
 COMPARED = ("trb_32208", "reference")  # in every figure, as the thesis's blue and green bars
 FAMILIES = {  # Table 7.2; torque and pmax figures 7.7/7.8, 7.10/7.11, 7.12/7.13, 7.14/7.15, 7.16/7.17
@@ -124,6 +130,24 @@ def _pressure_figure(ds, cases, path):
     return path
 
 
+def load_sweep(path):
+    """The dataset of a sensitivity ``sweep.nc``; InputError naming the path when it is none."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(f"{path} is not a file: give the sweep.nc of python -m sim.run --multirun "
+                         "+experiment=sensitivity")
+    try:
+        with xr.open_dataset(path) as ds:
+            ds = ds.load()
+    except Exception as exc:  # truncated, empty, not NetCDF
+        raise InputError(f"{path} is not a readable NetCDF file ({type(exc).__name__}: {exc})") from exc
+    missing = [name for name in ("variant", "pmax", "Fa", "Fr", "speed", "tilt") if name not in ds.variables]
+    if missing:
+        raise InputError(f"{path} is not a sensitivity sweep: it has no {', '.join(missing)} (made by python -m "
+                         "sim.run --multirun +experiment=sensitivity)")
+    return ds
+
+
 def plot_figures(path):
     """Draw the figures of thesis 7.2 from a sensitivity sweep dataset; PNG files beside it.
 
@@ -142,8 +166,7 @@ def plot_figures(path):
     """
     path = Path(path)
     out = path.parent
-    with xr.open_dataset(path) as ds:
-        ds = ds.load()
+    ds = load_sweep(path)
     quantities = ["pmax"] + (["torque"] if "torque" in ds else [])
     at_speed = [_case(ds, Fa, Fr, SPEED) for Fa, Fr in scenarios()]
     written = []
@@ -176,7 +199,8 @@ def main(argv=None):
     parser.add_argument("sweep", type=Path, help="sweep.nc of python -m sim.run --multirun +experiment=sensitivity")
     for p in plot_figures(parser.parse_args(argv).sweep):
         print(p)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    sys.exit(run(main))

@@ -12,7 +12,11 @@ Result cache (nothing lost, nothing redone)
     Failed and unconverged cases are never cached, so a re-run recomputes them.
     The cache does not depend on the sweep folder: the same command in a new folder (Hydra's
     ``${now:...}``), an overlapping sweep or a single run reuses every finished case, and a
-    killed sweep loses at most the cases that were being computed.
+    killed sweep loses at most the cases that were being computed. Runs sharing the cache at
+    the same time claim each case they compute (``<key>.claim``, :func:`compute_case`), so no
+    case is computed twice; temporaries and claims of interrupted runs are removed by the next
+    run (:func:`remove_stale_files`). A cache that cannot be written is reported once; the run
+    goes on.
 
 Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
     Before the first job the callback composes every job's config, refuses the whole sweep if
@@ -22,9 +26,11 @@ Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
     before parallel workers start: no two processes compile the same kernel at once. Each job
     writes ``<sweep dir>/<job>/result.nc`` atomically, or ``failed.json`` with the error (an
     impossible geometry fails that point, not the sweep) and logs one line. After the last job
-    :func:`collect` merges the jobs into ``<sweep dir>/sweep.nc``.
+    :func:`collect` merges the jobs into ``<sweep dir>/sweep.nc``; a job whose files are
+    unreadable or incomplete is recorded as damaged, never sinking the sweep.
 
-Command line: ``python -m sim.api.sweep collect DIR`` re-collects any sweep folder.
+Command line: ``python -m sim.api.sweep collect DIR`` re-collects any sweep folder (exit 1 with
+a one-line summary when a job is missing or damaged, 2 when DIR is not a sweep folder).
 """
 import argparse
 import base64
@@ -35,7 +41,10 @@ import json
 import logging
 import os
 import secrets
+import shutil
+import socket
 import sys
+import threading
 import time
 from functools import lru_cache
 from importlib import import_module
@@ -49,8 +58,10 @@ from tqdm import tqdm
 
 from sim import io
 from sim.api.cases import operating_points
+from sim.api.cli import PROJECT_ERRORS, one_line, refuse
 from sim.api.schema import ConfigError, validate
-from sim.api.simulation import simulate
+from sim.api.simulation import build_friction, build_model, simulate
+from sim.errors import InputError
 
 log = logging.getLogger(__name__)
 
@@ -220,8 +231,100 @@ def _cached(path, op):
         return ds
     except Exception as exc:  # a damaged entry is recomputed, never trusted
         log.warning("cache entry %s unreadable (%s): recomputing", path, exc)
-        path.unlink(missing_ok=True)
+        try:
+            path.unlink(missing_ok=True)
+        except OSError:  # a read-only cache: the entry stays, the case is computed here
+            pass
         return None
+
+
+# ------------------------------------------------------------------ files of interrupted writers
+#: A temporary or claim file whose writer cannot be asked (another host, or a name without its
+#: pid) is stale after this long [s]: engineering choice, far above the write of one result file
+#: or the computation of one case (seconds to minutes), so a live writer is never disturbed.
+STALE_AFTER = 3600.0
+TMP_SUFFIX = ".tmp"
+CLAIM_SUFFIX = ".claim"
+BROKEN_SUFFIX = ".broken"
+#: this host, as a short tag in the names of temporary files (a hostname may hold dots)
+HOST_TAG = hashlib.sha256(socket.gethostname().encode()).hexdigest()[:8]
+
+
+def _pid_alive(pid):
+    """Whether process ``pid`` runs on this host (a pid of another user's process counts as alive)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        return True
+    return True
+
+
+def _writer(name):
+    """(host tag, pid) of a temporary file written by :func:`_write_atomic`, or None (another writer,
+    e.g. sim.io's NetCDF temporaries, which carry no pid)."""
+    if not name.endswith(TMP_SUFFIX):
+        return None
+    parts = name[: -len(TMP_SUFFIX)].rsplit(".", 1)[-1].split("-")
+    if len(parts) != 3 or len(parts[0]) != len(HOST_TAG) or not parts[1].isdigit():
+        return None
+    return parts[0], int(parts[1])
+
+
+def _is_stale(path, writer, now=None):
+    """Whether a file of ``writer`` (host tag, pid, or None) at ``path`` has no live writer: its pid is
+    dead on this host, or it is older than STALE_AFTER."""
+    if writer is not None:
+        host, pid = writer
+        if host == HOST_TAG and pid != os.getpid():
+            return not _pid_alive(pid)
+    try:
+        age = (now or time.time()) - path.stat().st_mtime
+    except FileNotFoundError:
+        return False
+    return age > STALE_AFTER
+
+
+def remove_stale_files(folder, shards=False):
+    """Remove temporary files (``.*.tmp``) and case claims (``*.claim``) of interrupted writers.
+
+    Only stale ones (:func:`_is_stale`): a concurrent run's files in progress are left alone.
+    ``shards``: look in the two-character subfolders of a result cache. A folder that cannot be
+    read or written is left as it is. Returns the number of files removed.
+    """
+    folder = Path(folder)
+    folders = [folder]
+    if shards:
+        try:
+            folders += [d for d in folder.iterdir() if d.is_dir() and len(d.name) == 2]
+        except OSError:
+            return 0
+    removed = 0
+    for d in folders:
+        try:
+            entries = list(d.iterdir())
+        except OSError:
+            continue
+        for path in entries:
+            name = path.name
+            if name.startswith(".") and name.endswith(TMP_SUFFIX):
+                stale = _is_stale(path, _writer(name))
+            elif name.startswith(".") and name.endswith(BROKEN_SUFFIX):
+                stale = _is_stale(path, None)   # a stale claim set aside by a run killed while removing it
+            elif name.endswith(CLAIM_SUFFIX):
+                stale = _claim_is_stale(path)
+            else:
+                continue
+            if stale:
+                try:
+                    path.unlink()
+                    removed += 1
+                except OSError:
+                    pass
+    if removed:
+        log.info("removed %d stale temporary or claim file(s) of interrupted runs in %s", removed, folder)
+    return removed
 
 
 def _write_atomic(path, data):
@@ -229,11 +332,12 @@ def _write_atomic(path, data):
 
     The file is created with mode 0o666 minus the umask, like any file a program writes
     (``tempfile.mkstemp`` would give 0o600); a reader sees the old file or the new one, never a
-    partial one.
+    partial one. The temporary name carries this host's tag and pid, so that the next run can
+    tell an interrupted write (:func:`remove_stale_files`) from a concurrent one.
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.parent / f".{path.name}.{secrets.token_hex(8)}.tmp"
+    tmp = path.parent / f".{path.name}.{HOST_TAG}-{os.getpid()}-{secrets.token_hex(4)}{TMP_SUFFIX}"
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
     try:
         with os.fdopen(fd, "wb") as f:
@@ -244,24 +348,186 @@ def _write_atomic(path, data):
         raise
 
 
-def compute_case(cfg, op, path):
+# ------------------------------------------------------------------ claims: no case computed twice
+# A run that computes an uncached case first creates ``<key>.claim`` beside the cache entry
+# (O_CREAT | O_EXCL: one process wins) holding its host, pid and a token, and removes it when
+# done. Another run that finds the claim computes other cases first and then waits for the
+# entry; a claim whose process died (same host) or that is older than STALE_AFTER is broken.
+POLL = (0.05, 1.0)   # s: first and longest pause between looks at a claimed case
+_held = set()        # claim files held by this process (threads share its pid)
+_held_lock = threading.Lock()
+_warned = set()      # cache folders already reported as unwritable
+
+
+def _claim_file(path):
+    return path.with_name(path.name[: -len(CACHE_SUFFIX)] + CLAIM_SUFFIX)
+
+
+def _read_claim(claim):
+    try:
+        return json.loads(claim.read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def _claim_is_stale(claim):
+    """Whether a claim's process is gone: dead pid on this host (or this process, not holding it),
+    or older than STALE_AFTER; an unreadable claim after a short grace (a claim is written right
+    after it is created)."""
+    info = _read_claim(claim)
+    if not isinstance(info, dict):
+        try:
+            return time.time() - claim.stat().st_mtime > 10.0
+        except FileNotFoundError:
+            return False
+    if info.get("host") == HOST_TAG and isinstance(info.get("pid"), int):
+        if info["pid"] == os.getpid():
+            with _held_lock:
+                return claim not in _held
+        return not _pid_alive(info["pid"])
+    return _is_stale(claim, None)
+
+
+def _break_claim(claim, seen):
+    """Remove a stale claim whose content was ``seen``; a claim renewed meanwhile is put back."""
+    aside = claim.with_name(f".{claim.name}.{secrets.token_hex(4)}{BROKEN_SUFFIX}")
+    try:
+        os.rename(claim, aside)
+    except OSError:
+        return  # another run broke it first (or the cache is read-only)
+    if _read_claim(aside) != seen:
+        try:
+            os.link(aside, claim)  # a fresh claim was taken between our look and the rename: restore it
+        except OSError:
+            pass
+    aside.unlink(missing_ok=True)
+    log.warning("removed the claim %s of a run that is gone (%s)", claim, seen)
+
+
+def _warn_unwritable(folder, exc):
+    if str(folder) not in _warned:
+        _warned.add(str(folder))
+        log.warning("the result cache %s cannot be written (%s): computed cases are kept in this run's own "
+                    "result file only, and runs sharing the cache may compute a case twice", folder, exc)
+
+
+def _claim(path):
+    """Claim the case cached at ``path``: ("mine", token) to compute it, ("theirs", None) when a live
+    run holds it, ("none", None) when the cache cannot be written (compute without a claim)."""
+    claim = _claim_file(path)
+    for _ in range(3):
+        try:
+            claim.parent.mkdir(parents=True, exist_ok=True)
+            fd = os.open(claim, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        except FileExistsError:
+            seen = _read_claim(claim)
+            if not _claim_is_stale(claim):
+                return "theirs", None
+            _break_claim(claim, seen)
+            continue
+        except OSError as exc:
+            _warn_unwritable(path.parent.parent, exc)
+            return "none", None
+        token = secrets.token_hex(8)
+        with _held_lock:
+            _held.add(claim)
+        try:
+            with os.fdopen(fd, "w") as f:
+                json.dump({"host": HOST_TAG, "hostname": socket.gethostname(), "pid": os.getpid(),
+                           "token": token, "time": time.time()}, f)
+        except OSError as exc:  # a full disk: the empty claim still holds the case
+            log.warning("claim %s written empty (%s)", claim, exc)
+        return "mine", token
+    return "theirs", None
+
+
+def _release(path, token):
+    """Remove our claim of the case at ``path`` (not a claim another run took after breaking ours)."""
+    claim = _claim_file(path)
+    with _held_lock:
+        _held.discard(claim)
+    info = _read_claim(claim)
+    if info is None or info.get("token") == token:
+        try:
+            claim.unlink(missing_ok=True)
+        except OSError:
+            pass
+
+
+def _await_case(path, op):
+    """Wait while another run holds the claim of the case at ``path``: its Dataset once cached, or
+    None when the claim is gone without a cache entry (not converged, failed) or went stale."""
+    pause = POLL[0]
+    claim = _claim_file(path)
+    while True:
+        ds = _cached(path, op)
+        if ds is not None:
+            return ds
+        if not claim.exists():
+            return _cached(path, op)  # written just before the claim was removed, or None
+        if _claim_is_stale(claim):
+            _break_claim(claim, _read_claim(claim))
+            return None
+        time.sleep(pause)
+        pause = min(2 * pause, POLL[1])
+
+
+def _store(path, ds):
+    """Cache a converged case; a cache that cannot be written (full, read-only) is reported once and
+    the run goes on (the case is in the run's own result)."""
+    try:
+        _write_atomic(path, encode_case(ds))
+    except OSError as exc:
+        _warn_unwritable(path.parent.parent, exc)
+
+
+def _simulate_case(cfg, op, path):
+    cfg.load.update(Fa=op.Fa, Fr=op.Fr, speed=op.speed, tilt=op.tilt, oil_temperature=op.oil_temperature, zip=[])
+    ds = simulate(cfg)
+    log.debug("computed case %s %s", path.stem if path is not None else "(no cache)", op)
+    if path is not None and bool(ds.converged.all()):
+        _store(path, ds)
+    return ds
+
+
+def compute_case(cfg, op, path, wait=True):
     """Dataset of one load case: from the cache file ``path`` or computed (and cached when converged).
 
     Returns the Dataset and whether it came from the cache. ``cfg`` is a private copy whose
-    ``load`` node this function sets to the case.
+    ``load`` node this function sets to the case. The case is claimed while it is computed
+    (:func:`_claim`); when another run holds the claim, this waits for its result
+    (``wait=False``: returns ``(None, False)`` at once, to come back later). A case that the
+    other run could not cache (not converged, failed) is computed here after it.
     """
     ds = _cached(path, op)
     if ds is not None:
         return ds, True
-    cfg.load.update(Fa=op.Fa, Fr=op.Fr, speed=op.speed, tilt=op.tilt, oil_temperature=op.oil_temperature, zip=[])
-    ds = simulate(cfg)
-    if path is not None and bool(ds.converged.all()):
-        _write_atomic(path, encode_case(ds))
-    return ds, False
+    if path is None:
+        return _simulate_case(cfg, op, None), False
+    while True:
+        state, token = _claim(path)
+        if state == "theirs":
+            if not wait:
+                return None, False
+            ds = _await_case(path, op)
+            if ds is not None:
+                return ds, True
+            continue
+        try:
+            ds = _cached(path, op)   # finished by another run between our first look and the claim
+            if ds is not None:
+                return ds, True
+            return _simulate_case(cfg, op, path), False
+        finally:
+            if state == "mine":
+                _release(path, token)
 
 
 def run_cases(cfg, progress=True):
     """All load cases of ``cfg.load`` (one or a grid), each from the cache or computed.
+
+    Cases that another run is computing (claimed in the shared cache) are left for last and
+    then taken from the cache once it is there.
 
     Parameters
     ----------
@@ -278,13 +544,17 @@ def run_cases(cfg, progress=True):
     """
     ops = operating_points(cfg.load)
     base, one = _key_base(cfg), copy.deepcopy(cfg)
-    parts, cached = [], 0
-    for op in tqdm(ops, desc="cases", unit="case", disable=None if progress and len(ops) > 1 else True):
-        ds, hit = compute_case(one, op, cache_file(cfg, op, base))
-        parts.append(ds)
-        cached += hit
+    paths = [cache_file(cfg, op, base) for op in ops]
+    done = [None] * len(ops)
+    for i in tqdm(range(len(ops)), desc="cases", unit="case", disable=None if progress and len(ops) > 1 else True):
+        ds, hit = compute_case(one, ops[i], paths[i], wait=False)
+        if ds is not None:
+            done[i] = ds, hit
+    for i in (i for i, d in enumerate(done) if d is None):   # claimed by another run: its result, or ours
+        done[i] = compute_case(one, ops[i], paths[i])
+    cached = sum(hit for _, hit in done)
     config_yaml = OmegaConf.to_yaml(cfg, resolve=True)
-    ds = io.combine_cases(parts, config_yaml)
+    ds = io.combine_cases([ds for ds, _ in done], config_yaml)
     ds.attrs["code_fingerprint"] = code_fingerprint()  # the code part of the cache keys (sources of sim/)
     stats = {"cases": len(ops), "cached": cached, "computed": len(ops) - cached,
              "not_converged": int((~ds.converged.values.astype(bool)).sum())}
@@ -295,10 +565,13 @@ def run_cases(cfg, progress=True):
 def run_job(cfg, out_dir, job, overrides):
     """Run one multirun job into ``out_dir``: ``result.nc`` or ``failed.json``, one log line.
 
-    Never raises for a failed point (the sweep goes on and the collector records it).
+    Never raises for a failed point (the sweep goes on and the collector records it). A result
+    that cannot be written (full disk, read-only folder) is a failed job whose message names the
+    file; its converged cases are in the result cache, so a re-run only writes them.
     """
     out_dir = Path(out_dir)
     result, failed = out_dir / cfg.output.file, out_dir / FAILED
+    remove_stale_files(result.parent)   # temporaries of an interrupted write of this job
     result.unlink(missing_ok=True)   # a re-used sweep folder must not show an old result
     failed.unlink(missing_ok=True)
     head = f"job {job} [{' '.join(overrides)}]"
@@ -306,14 +579,60 @@ def run_job(cfg, out_dir, job, overrides):
     try:
         validate(cfg)
         ds, n = run_cases(cfg, progress=False)
+        write_result(ds, result, cfg)
     except Exception as exc:
         message = f"{type(exc).__name__}: {exc}"
         (log.warning if isinstance(exc, ValueError) else log.exception)("%s failed: %s", head, message)
-        failed.write_text(json.dumps({"job": job, "overrides": list(overrides), "error": message}))
+        try:
+            failed.write_text(json.dumps({"job": job, "overrides": list(overrides), "error": message}))
+        except OSError as err:
+            log.error("%s: %s cannot be written either (%s): the collector will report the job as missing",
+                      head, failed, err)
         return
-    io.write_netcdf_atomic(ds, result)
     log.info("%s: %d cases (%d from cache, %d computed, %d not converged) in %.1f s", head, n["cases"],
              n["cached"], n["computed"], n["not_converged"], time.perf_counter() - t0)
+
+
+class WriteError(OSError):
+    """A result file that cannot be written (full disk, read-only folder); the message names it."""
+
+
+def write_result(ds, path, cfg=None):
+    """``sim.io.write_netcdf_atomic`` with a failure named: WriteError giving the path, the cause,
+    the free space there and where the finished cases are (the result cache)."""
+    try:
+        return io.write_netcdf_atomic(ds, path)
+    except (OSError, RuntimeError) as exc:  # netCDF4 reports a full disk as RuntimeError "HDF error"
+        try:
+            free = shutil.disk_usage(Path(path).parent).free
+            free = f"{free / 1e3:.0f} kB free there" if free < 1e7 else f"{free / 1e6:.0f} MB free there"
+        except OSError:
+            free = "its folder cannot be read"
+        cache = cfg.output.cache_dir if cfg is not None else None
+        kept = (f"; its converged cases are in the result cache {cache}, so a re-run only writes the file"
+                if cache is not None else "")
+        raise WriteError(f"cannot write {path}: {type(exc).__name__}: {exc} ({free}; is the disk full or the "
+                         f"folder read-only?){kept}") from exc
+
+
+def output_path_problem(file, run_dir, multirun=False):
+    """Why ``output.file`` cannot be written from ``run_dir`` (None if it can).
+
+    A path inside the run (or job) folder is always fine (it is created); a path outside it must
+    be in an existing folder, so that a typo never creates folders elsewhere (``/x/result.nc``
+    would create ``/x``); in a multirun every job writes its own file, inside its job folder.
+    """
+    run_dir = os.path.abspath(run_dir)
+    target = os.path.abspath(os.path.join(run_dir, str(file)))
+    if os.path.commonpath([run_dir, target]) == run_dir and target != run_dir:
+        return None
+    if multirun:
+        return (f"output.file = {str(file)!r} is outside the job folder: in a multirun each job writes its own "
+                f"result, so it must be a path inside the job folder (e.g. result.nc)")
+    if not os.path.isdir(os.path.dirname(target)):
+        return (f"output.file = {str(file)!r} is outside the run folder and its folder {os.path.dirname(target)} "
+                "does not exist: a path outside the run folder must be in an existing folder")
+    return None
 
 
 # ------------------------------------------------------------------ the multirun around the jobs
@@ -370,18 +689,35 @@ def warm_up(configs, attempts=3):
                 break
             if _is_cached(cfg, op, base):
                 continue
-            tried[kind] = tried.get(kind, 0) + 1
             try:
-                ds, _ = compute_case(copy.deepcopy(cfg), op, cache_file(cfg, op, base))
+                ds, _ = compute_case(copy.deepcopy(cfg), op, cache_file(cfg, op, base), wait=False)
             except Exception:  # the job records the error; another job of this kind warms up
                 break
+            if ds is None:
+                continue  # another run is computing it (and compiling the kernels there)
+            tried[kind] = tried.get(kind, 0) + 1
             if bool(ds.converged.all()):
                 done.add(kind)
 
 
-def _refuse(problems, what="Sweep refused before any job ran"):
-    print(f"{what}:\n" + "\n".join(problems), file=sys.stderr)
-    raise SystemExit(2)  # SystemExit passes Hydra's callback guard, which only turns Exceptions into warnings
+def _refuse(problems, what="sweep refused before any job ran"):
+    """One line on stderr, exit 2 (:mod:`sim.api.cli`): SystemExit passes Hydra's callback guard,
+    which only turns Exceptions into warnings."""
+    refuse(f"{what}: " + "; ".join(one_line(p) for p in problems))
+
+
+#: run folders that did not exist when a single run started (sim.run removes them again when
+#: the run is refused after Hydra created them)
+NEW_RUN_DIRS = set()
+
+
+def preflight(cfg):
+    """Everything a run checks before it computes, without computing: the schema
+    (:func:`validate`), the geometry's feasibility and the friction inputs (the models are built
+    as :func:`simulate` builds them). Raises the project's errors (ConfigError, GeometryError,
+    InputError)."""
+    validate(cfg)
+    build_friction(cfg, build_model(cfg))
 
 
 class SweepCallback(Callback):
@@ -398,10 +734,19 @@ class SweepCallback(Callback):
         self.after_collect = after_collect
 
     def on_run_start(self, config, **kwargs):
+        """A single run: refuse bad input (one line, exit 2) before Hydra creates the run folder."""
+        run_dir = Path(config.hydra.run.dir)
         try:
-            validate(config)
-        except ConfigError as exc:
-            _refuse([str(exc)], "Run refused before anything ran")
+            preflight(config)
+        except PROJECT_ERRORS as exc:
+            _refuse([str(exc)], "run refused before anything ran")
+        problem = output_path_problem(config.output.file, run_dir)
+        if problem:
+            _refuse([problem], "run refused before anything ran")
+        if not run_dir.exists():
+            NEW_RUN_DIRS.add(str(run_dir.resolve()))
+        if config.output.cache_dir is not None:
+            remove_stale_files(config.output.cache_dir, shards=True)
 
     def on_multirun_start(self, config, **kwargs):
         from hydra import compose
@@ -419,13 +764,21 @@ class SweepCallback(Callback):
                 configs.append(cfg)
             except ConfigError as exc:
                 problems += [f"job {num} [{' '.join(overrides)}]: {line}" for line in str(exc).splitlines()]
+                continue
             except Exception as exc:  # composition: an unknown key (the cause names it and its schema)
                 text = " ".join(str(exc).split()) + (f" {exc.__cause__}".split("\n")[0] if exc.__cause__ else "")
                 problems.append(f"job {num} [{' '.join(overrides)}]: {text}")
+                continue
+            problem = output_path_problem(cfg.output.file, Path(config.hydra.sweep.dir) / str(num), multirun=True)
+            if problem:
+                problems.append(f"job {num} [{' '.join(overrides)}]: {problem}")
         if problems:
             _refuse(problems)
         sweep_dir = Path(config.hydra.sweep.dir)
         sweep_dir.mkdir(parents=True, exist_ok=True)
+        remove_stale_files(sweep_dir)
+        for cache_dir in {str(cfg.output.cache_dir) for cfg in configs if cfg.output.cache_dir is not None}:
+            remove_stale_files(cache_dir, shards=True)
         manifest = {"overrides": list(config.hydra.overrides.task),
                     "config": OmegaConf.to_yaml(OmegaConf.masked_copy(config, [k for k in config if k != "hydra"]),
                                                 resolve=True),
@@ -441,30 +794,110 @@ class SweepCallback(Callback):
         log.info("sweep: numba kernels compiled or loaded in this process in %.1f s", time.perf_counter() - t0)
 
     def on_multirun_end(self, config, **kwargs):
+        """Collect ``sweep.nc``; exit 1 with a summary when a job left no readable result."""
         sweep_dir = Path(config.hydra.sweep.dir)
         if not (sweep_dir / MANIFEST).exists():
             return
-        path = collect(sweep_dir)
+        try:
+            path, incomplete = collect_jobs(sweep_dir)
+        except WriteError as exc:
+            refuse(exc, status=1)
         if self.after_collect:
             module, _, name = self.after_collect.rpartition(".")
             getattr(import_module(module), name)(path)
+        if incomplete:
+            refuse(incomplete_summary(path, incomplete), status=1)
 
 
 # ------------------------------------------------------------------ the collector
 NOT_FINISHED = "the job did not finish (killed, or not run yet)"
+DAMAGED = "damaged"       # failure reason of a job whose files are there but unreadable or incomplete
+INCOMPLETE = ("missing", DAMAGED)   # reasons that leave a sweep unfinished (a re-run completes it)
+#: results that a converged case always has as finite numbers (sim.io; the contract checker's list and more)
+FINITE_WHEN_CONVERGED = ("pmax", "axial_displacement", "torque", "power_loss", "C_eff")
+
+
+class SweepError(InputError):
+    """A folder that is not a sweep folder (no or an unreadable ``sweep.json``)."""
+
+
+def result_problem(ds, cfg):
+    """Why a job's result Dataset is not the whole result of its config (DATA.md), or "".
+
+    Checks what the collector relies on: one design, the job's cases exactly, every variable
+    that sim.io always writes (the friction ones when friction is enabled and a case converged)
+    with its dimensions, and finite key results wherever a case is marked converged.
+    """
+    if ds.sizes.get("design") != 1 or "case" not in ds.sizes:
+        return f"dimensions {dict(ds.sizes)}: not one design over cases"
+    absent = [c for c in io.CASE_COORDS if c not in ds.coords]
+    if absent:
+        return f"no case coordinate {', '.join(absent)}"
+    want = sorted((o.Fa, o.Fr, o.speed, o.tilt, o.oil_temperature) for o in operating_points(cfg.load))
+    got = sorted(_case_tuples(ds))
+    if got != want:
+        return f"holds {len(got)} cases that are not the job's {len(want)} (a result of another job or run?)"
+    if "converged" not in ds:
+        return "no variable converged"
+    conv = np.asarray(ds["converged"].values, dtype=bool)
+    names = [n for n in io.CASE_VARIABLES if n not in io.OPTIONAL_VARIABLES]
+    if bool(OmegaConf.select(cfg, "friction.enabled")) and conv.any():
+        names += [n for n in io.CASE_VARIABLES if n in io.OPTIONAL_VARIABLES]
+    expected = {n: ("design", "case") + io.CASE_VARIABLES[n][0] for n in names} | {"C": ("design",), "C0": ("design",)}
+    absent = [n for n in expected if n not in ds.data_vars]
+    if absent:
+        return f"no variable {', '.join(absent)}"
+    for name, dims in expected.items():
+        if ds[name].dims != dims:
+            return f"{name} has dimensions {ds[name].dims}, not {dims}"
+    for name in FINITE_WHEN_CONVERGED:
+        if name in ds and ds[name].dtype.kind == "f":
+            values = ds[name].values.reshape(conv.shape + (-1,))
+            if not np.isfinite(values[conv]).all():
+                return f"{name} is not finite for a case marked converged"
+    for name in ("C", "C0"):
+        if not np.isfinite(ds[name].values).all():
+            return f"{name} is not finite"
+    return ""
 
 
 def _job_outcome(sweep_dir, job, cfg):
-    """(Dataset, None, None), or (None, reason, message) with reason "error" or "missing"."""
+    """(Dataset, None, None), or (None, reason, message) with reason "error", "missing" or "damaged".
+
+    Never raises for what a job left behind: an unreadable ``overrides.yaml``, ``failed.json``
+    or result file, or a result that :func:`result_problem` refuses, is a damaged job whose
+    message says which file and why.
+    """
     job_dir = sweep_dir / str(job["job"])
     saved = job_dir / ".hydra" / "overrides.yaml"
-    if not saved.exists() or list(OmegaConf.load(saved)) != job["overrides"]:
-        return None, "missing", NOT_FINISHED   # never started, or a folder of another sweep
-    if (job_dir / FAILED).exists():
-        return None, "error", json.loads((job_dir / FAILED).read_text())["error"]
-    if not (job_dir / cfg.output.file).exists():
+    if not saved.exists():
+        return None, "missing", NOT_FINISHED   # never started
+    try:
+        overrides = list(OmegaConf.load(saved))
+    except Exception as exc:
+        return None, DAMAGED, f"{saved} unreadable: {type(exc).__name__}: {one_line(exc)}"
+    if overrides != job["overrides"]:
+        return None, "missing", NOT_FINISHED   # a folder of another sweep
+    failed = job_dir / FAILED
+    if failed.exists():
+        try:
+            error = json.loads(failed.read_text())["error"]
+            if not isinstance(error, str):
+                raise TypeError(f"its error is a {type(error).__name__}, not text")
+        except Exception as exc:
+            return None, DAMAGED, f"{failed} unreadable: {type(exc).__name__}: {one_line(exc)}"
+        return None, "error", error
+    result = job_dir / cfg.output.file
+    if not result.exists():
         return None, "missing", NOT_FINISHED
-    return xr.load_dataset(job_dir / cfg.output.file), None, None
+    try:
+        ds = xr.load_dataset(result)
+    except Exception as exc:  # truncated, empty or not NetCDF at all
+        return None, DAMAGED, f"{result} unreadable: {type(exc).__name__}: {one_line(exc)}"
+    problem = result_problem(ds, cfg)
+    if problem:
+        return None, DAMAGED, f"{result} incomplete: {problem}"
+    return ds, None, None
 
 
 def _is_load(key):
@@ -551,9 +984,11 @@ def collect(sweep_dir):
 
     Jobs that differ only in their load form one design; designs and cases fill the flat
     ``design`` x ``case`` grid, swept parameters are design coordinates (attribute ``swept``
-    names them), and every point without a valid result (error, not converged, missing) is a
-    row of the failure table (``failed_*`` variables on dimension ``failure``) and keeps its
-    slot as NaN with ``converged = False``. Re-collecting the same results gives the same data.
+    names them), and every point without a valid result (error, not converged, missing, or a
+    damaged job: an unreadable or incomplete result file, a corrupt ``failed.json``) is a row of
+    the failure table (``failed_*`` variables on dimension ``failure``) and keeps its slot as NaN
+    with ``converged = False``. Every other job is merged. Re-collecting the same results gives
+    the same data.
 
     Parameters
     ----------
@@ -564,11 +999,31 @@ def collect(sweep_dir):
     -------
     pathlib.Path
         The path of ``sweep.nc``.
+
+    Raises
+    ------
+    SweepError
+        ``sweep_dir`` has no readable ``sweep.json``.
+    WriteError
+        ``sweep.nc`` cannot be written (full disk, read-only folder).
     """
+    return collect_jobs(sweep_dir)[0]
+
+
+def collect_jobs(sweep_dir):
+    """:func:`collect`, and the jobs that left the sweep unfinished: a list of (job, reason,
+    message) with reason "missing" or "damaged"."""
     sweep_dir = Path(sweep_dir)
-    manifest = json.loads((sweep_dir / MANIFEST).read_text())
-    jobs = manifest["jobs"]
-    configs = [OmegaConf.create(job["config"]) for job in jobs]
+    try:
+        manifest = json.loads((sweep_dir / MANIFEST).read_text())
+        jobs = manifest["jobs"]
+        configs = [OmegaConf.create(job["config"]) for job in jobs]
+    except FileNotFoundError:
+        raise SweepError(f"{sweep_dir} is not a sweep folder: it has no {MANIFEST} "
+                         "(python -m sim.run --multirun writes it before the first job)") from None
+    except Exception as exc:
+        raise SweepError(f"{sweep_dir / MANIFEST} unreadable: {type(exc).__name__}: {one_line(exc)}") from exc
+    remove_stale_files(sweep_dir)
     outcomes = [_job_outcome(sweep_dir, job, cfg) for job, cfg in zip(jobs, configs)]
     designs = _group_designs(jobs, configs)
     datasets = [_design_dataset(members, outcomes, configs) for members in designs]
@@ -584,9 +1039,21 @@ def collect(sweep_dir):
                      "config": manifest["config"], "sweep_overrides": " ".join(manifest["overrides"]),
                      "swept": " ".join(swept), "sweep_dir": str(sweep_dir.resolve()),
                      "created": io.utc_now()})
-    path = io.write_netcdf_atomic(ds, sweep_dir / SWEEP_FILE)
+    path = write_result(ds, sweep_dir / SWEEP_FILE)
     _report(ds, path)
-    return path
+    incomplete = [(job["job"], reason, message) for job, (_, reason, message) in zip(jobs, outcomes)
+                  if reason in INCOMPLETE]
+    return path, incomplete
+
+
+def incomplete_summary(path, incomplete, shown=5):
+    """One line: how many jobs left no result, and why (the first ``shown`` of them)."""
+    counts = {r: sum(1 for _, reason, _ in incomplete if reason == r) for r in INCOMPLETE}
+    head = ", ".join(f"{n} {r}" for r, n in counts.items() if n)
+    rows = "; ".join(f"job {job} {reason}: {message}" for job, reason, message in incomplete[:shown])
+    more = f"; ... {len(incomplete) - shown} more in the failed_* variables" if len(incomplete) > shown else ""
+    return (f"{path} written, but {len(incomplete)} job(s) left no readable result ({head}); re-run the sweep to "
+            f"complete it: {rows}{more}")
 
 
 def _report(ds, path, shown=10):
@@ -604,14 +1071,28 @@ def _report(ds, path, shown=10):
 
 
 def main(argv=None):
-    """``python -m sim.api.sweep collect DIR``: (re)build ``DIR/sweep.nc`` from the jobs in DIR."""
-    parser = argparse.ArgumentParser(prog="python -m sim.api.sweep", description=main.__doc__)
+    """``python -m sim.api.sweep collect DIR``: (re)build ``DIR/sweep.nc`` from the jobs in DIR.
+
+    Exit status 0 when every job has a result (an error or a non-converged case is a result),
+    1 with a summary on stderr when a job is missing or damaged (sweep.nc is written with the
+    others) or sweep.nc cannot be written, 2 when DIR is not a sweep folder.
+    """
+    parser = argparse.ArgumentParser(prog="python -m sim.api.sweep", description=main.__doc__.split("\n")[0])
     sub = parser.add_subparsers(dest="command", required=True)
     sub.add_parser("collect", help="merge the jobs of a sweep folder into sweep.nc").add_argument("dir", type=Path)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.INFO, format="%(message)s")
-    print(collect(args.dir))
+    try:
+        path, incomplete = collect_jobs(args.dir)
+    except WriteError as exc:
+        refuse(exc, status=1)
+    print(path)
+    if incomplete:
+        refuse(incomplete_summary(path, incomplete), status=1)
+    return 0
 
 
 if __name__ == "__main__":
-    main()
+    from sim.api.cli import run
+
+    sys.exit(run(main))

@@ -140,6 +140,6 @@ def test_bad_override_refuses_the_sweep_at_start(tmp_path, capsys):
             SweepCallback().on_multirun_start(config=master, config_name="config")
     assert exit_.value.code == 2
     err = capsys.readouterr().err
-    assert "job 0 [bearing.PCR=-5 " in err and "bearing.PCR = -5 is outside the allowed range: a number > 0 mm" in err
+    assert "job 0 [bearing.PCR=-5 " in err and "bearing.PCR = -5 is outside the allowed range: a number in (0, 100000] mm" in err
     assert err.count("load.Fa = 'abc' is outside the allowed range: a number in (0, 1e+07] N") == 2
     assert not (tmp_path / "sweep").exists() and not (tmp_path / "cache").exists()
