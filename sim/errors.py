@@ -1,6 +1,8 @@
 """The project's input errors (bottom layer: imported by every other layer, imports nothing).
 
-Every refusal names the parameter, its value and the allowed range or bound (STYLE.md).
+Every refusal names the parameter, its value and the allowed range or bound (STYLE.md). The
+ranges themselves are :mod:`sim.config_schema`'s; :func:`check_range` remains for
+``sim.api.friction_model`` until it checks through the schema too.
 """
 import math
 
@@ -13,8 +15,10 @@ class GeometryError(ValueError):
     """Impossible bearing geometry; the message names the parameter, its value and the bound."""
 
 
-class ConfigError(ValueError):
-    """Config values outside their schema; the message names each key, value and allowed range."""
+class ConfigError(InputError):
+    """Config values outside their schema (:mod:`sim.config_schema`); the message names each key,
+    value and allowed range, one per line. An InputError: callers that treat bad input as a
+    configuration error (``studies.evaluate.simulate_point``) treat this one alike."""
 
 
 def check_range(name, value, low, high, low_open=False):

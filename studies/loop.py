@@ -29,7 +29,7 @@ from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, design_matrix, eval
 from studies.search import (complete_trials, finished_study, make_sampler, make_storage, open_study, persist_study,
                             run_trials, trial_margins)
 from studies.space import DesignSpace
-from surrogate import GPSettings, GPSurrogate, load_surrogates, save_surrogates
+from surrogate import GPSettings, GPSurrogate, load_surrogates, save_surrogates, saved_set
 
 CONVERGED = "converged"  # surrogate of the convergence label: +1 converged, -1 not (Rasmussen & Williams 6.5)
 # study keys that do not change results: a study may be resumed with other values
@@ -207,8 +207,12 @@ class DesignSearch:
                 for q, (X, y, log, units) in self.training_sets(ds).items()}
 
     def surrogates(self, folder, ds):
-        """Surrogates saved in ``folder``, or fitted to ``ds`` and saved there."""
-        if folder.is_dir():
+        """Surrogates saved in ``folder``, or fitted to ``ds`` and saved there.
+
+        Loading checks each file's SHA-256 and the scikit-learn version recorded at save time
+        (surrogate.store); a set that fails is refused with the reason and how to refit.
+        """
+        if saved_set(folder) is not None:
             return load_surrogates(folder)
         models = self.fit(ds)
         save_surrogates(models, folder)

@@ -13,19 +13,14 @@ Predictions: in z the posterior is normal N(mu, sd^2) (R&W eq. 2.25, 2.26); for 
 y is log-normal, mean exp(mu + sd^2/2), variance (exp(sd^2) - 1) exp(2 mu + sd^2), and the
 central interval the exponential of the normal one.
 """
-import json
-import os
-import shutil
 import warnings
 from dataclasses import asdict, dataclass
-from pathlib import Path
 
-import joblib
 import numpy as np
 import sklearn
 from scipy.stats import norm
-from sklearn.gaussian_process import GaussianProcessRegressor
 from sklearn.exceptions import ConvergenceWarning
+from sklearn.gaussian_process import GaussianProcessRegressor
 from sklearn.gaussian_process.kernels import ConstantKernel, Matern, WhiteKernel
 from threadpoolctl import threadpool_limits
 
@@ -171,47 +166,12 @@ class GPSurrogate:
 
     # ------------------------------------------------------------------ persistence
     def metadata(self):
-        """JSON-able description: output, transform, bounds, fitted kernel, settings, versions."""
+        """JSON-able description: output, transform, bounds, fitted kernel, settings, versions.
+
+        Saving and loading: :mod:`surrogate.store` (``save_surrogates``, ``load_surrogates``).
+        """
         return {"name": self.name, "units": self.units, "log": self.log, "bounds": self.bounds.tolist(),
                 "n_train": self.n_train, "kernel": str(self.gp.kernel_) if self.gp is not None else None,
                 "log_marginal_likelihood": (float(self.gp.log_marginal_likelihood_value_)
                                             if self.gp is not None else None),
                 "settings": asdict(self.settings), "sklearn_version": sklearn.__version__}
-
-    def save(self, path):
-        """Write ``<path>.joblib`` (the fitted model) and ``<path>.json`` (metadata); returns the joblib path."""
-        path = Path(path)
-        path.parent.mkdir(parents=True, exist_ok=True)
-        model_path = path.with_suffix(".joblib")
-        joblib.dump(self, model_path)
-        path.with_suffix(".json").write_text(json.dumps(self.metadata(), indent=2))
-        return model_path
-
-    @staticmethod
-    def load(path):
-        """Load a surrogate written by :meth:`save` (``path`` with or without suffix)."""
-        model = joblib.load(Path(path).with_suffix(".joblib"))
-        if not isinstance(model, GPSurrogate):
-            raise TypeError(f"{path} does not hold a GPSurrogate")
-        return model
-
-
-def save_surrogates(models, folder):
-    """Save a dict name -> GPSurrogate as ``<folder>/<name>.joblib/.json``.
-
-    Written into a sibling temporary folder renamed into place, so an interrupted save never
-    leaves a partial set behind.
-    """
-    folder = Path(folder)
-    tmp = folder.with_name(folder.name + ".tmp")
-    shutil.rmtree(tmp, ignore_errors=True)
-    for name, model in models.items():
-        model.save(tmp / name)
-    shutil.rmtree(folder, ignore_errors=True)
-    os.replace(tmp, folder)
-    return folder
-
-
-def load_surrogates(folder):
-    """Load every surrogate saved in ``folder``: dict name -> GPSurrogate."""
-    return {p.stem: GPSurrogate.load(p) for p in sorted(Path(folder).glob("*.joblib"))}

@@ -3,11 +3,12 @@ DATA.md outputs derived from it (PyBaMM-style: the model holds parameters, the s
 :mod:`sim.solvers.quasi_static`, :mod:`sim.api.simulation` joins them).
 """
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
-from sim.errors import InputError, check_range
+from sim.config_schema import LoadConfig, SolverConfig, check_node
+from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
 from sim.physics.contact import contact_modulus, hertz_line_pressure
@@ -15,6 +16,9 @@ from sim.physics.elasticity import ELASTICITY_MODES, influence_matrix
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.quasi_static import (NSP, SP_BACKTRACKS, SP_FORCING, SP_MAX_ITER, SP_MAX_STEP, SP_RING_STEP,
                                       SP_ROLLER_MAX_ITER, SP_ROLLER_TOL_RATIO, SP_TOL, SP_TRUST, solve_bearing)
+
+#: Keys of one load case, in the order of OperatingPoint's fields.
+LOAD_CASE_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
 
 
 @dataclass(frozen=True)
@@ -29,25 +33,11 @@ class OperatingPoint:
 
     @classmethod
     def from_config(cls, load):
-        Fa = check_range("load.Fa", load["Fa"], 0.0, 1e7, low_open=True)
-        Fr = check_range("load.Fr", load["Fr"], 0.0, 1e7)
-        speed = check_range("load.speed", load["speed"], 0.0, 1e5)
-        tilt = check_range("load.tilt", load["tilt"], -2.0, 2.0)
-        temp = check_range("load.oil_temperature", load.get("oil_temperature", 40.0), -40.0, 200.0)
-        return cls(Fa, Fr, speed, tilt, temp)
-
-
-# Newton limits of sim.solvers.quasi_static: key -> (low, high, low end open, type); reasons in
-# conf/solver/quasi_static.yaml
-NEWTON_LIMITS = {
-    "roller_tolerance_ratio": (0.0, 1.0, True, float),
-    "forcing": (0.0, 1.0, False, float),
-    "roller_step_interference": (0.0, 10.0, True, float),
-    "roller_step_length": (0.0, 1.0, True, float),
-    "line_search_halvings": (0, 60, False, int),
-    "ring_step_fraction": (0.0, 10.0, True, float),
-    "continuation_steps": (0, 1000, False, int),
-}
+        """One load case from a mapping with one number per key (:data:`LOAD_CASE_KEYS`); each
+        checked against the ``load`` schema (:mod:`sim.config_schema`): InputError naming key,
+        value and allowed range."""
+        check_node(LoadConfig, load, "load", keys=LOAD_CASE_KEYS, scalar=True, error=InputError)
+        return cls(*(float(load[k]) for k in LOAD_CASE_KEYS))
 
 
 @dataclass(frozen=True)
@@ -59,7 +49,8 @@ class SolverSettings:
     roller_max_iterations: int
     centrifugal: bool
     gyroscopic: bool
-    # Newton limits of sim.solvers.quasi_static (conf/solver/quasi_static.yaml gives the reasons)
+    # Newton limits of sim.solvers.quasi_static (conf/solver/quasi_static.yaml gives the reasons,
+    # sim.config_schema.SolverConfig the ranges)
     roller_tolerance_ratio: float
     forcing: float
     roller_step_interference: float
@@ -70,19 +61,11 @@ class SolverSettings:
 
     @classmethod
     def from_config(cls, solver):
-        el = str(solver["elasticity"])
-        if el not in ELASTICITY_MODES:
-            raise InputError(f"solver.elasticity = {el!r} is not one of {sorted(ELASTICITY_MODES)}")
-        n = solver["n_slices"]
-        if not (isinstance(n, (int, np.integer)) and 2 <= int(n) <= 400):
-            raise InputError(f"solver.n_slices = {n!r} is outside the allowed range [2, 400] (integer)")
-        tol = check_range("solver.tolerance", solver["tolerance"], 1e-14, 1e-3, low_open=True)
-        mi = int(check_range("solver.max_iterations", solver["max_iterations"], 1, 10000))
-        rmi = int(check_range("solver.roller_max_iterations", solver["roller_max_iterations"], 1, 10000))
-        extra = {}
-        for key, (low, high, low_open, kind) in NEWTON_LIMITS.items():
-            extra[key] = kind(check_range(f"solver.{key}", solver[key], low, high, low_open=low_open))
-        return cls(int(n), el, tol, mi, rmi, bool(solver["centrifugal"]), bool(solver["gyroscopic"]), **extra)
+        """From the ``solver`` config node; every key checked against its schema
+        (:mod:`sim.config_schema`): InputError naming key, value and allowed range."""
+        check_node(SolverConfig, solver, "solver", error=InputError)
+        kinds = {f.name: f.type for f in fields(cls)}
+        return cls(**{name: kind(solver[name]) for name, kind in kinds.items()})
 
 
 class BearingModel:

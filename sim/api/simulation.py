@@ -11,6 +11,7 @@ from omegaconf import OmegaConf
 from sim.api.bearing_model import BearingModel, SolverSettings, case_results
 from sim.api.cases import operating_points
 from sim.api.friction_model import FrictionModel
+from sim.api.schema import validate
 from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.io import build_dataset
@@ -19,6 +20,7 @@ from sim.physics.lubricant import Lubricant
 
 def build_model(cfg):
     """Validated :class:`BearingModel` of a composed config (bearing, material, solver)."""
+    validate(cfg)  # every key against its schema (sim.config_schema) before anything is built
     settings = SolverSettings.from_config(cfg.solver)
     geometry = Geometry.from_config(cfg.bearing, cfg.material, settings.n_slices)
     if "slice_stiffness_iso16281" not in cfg.material:
@@ -77,6 +79,7 @@ def simulate(cfg):
     xarray.Dataset
         The result following DATA.md, dims ``design`` (1) and ``case``.
     """
+    validate(cfg)  # every key against its schema (sim.config_schema): ConfigError before anything runs
     model = build_model(cfg)
     friction = build_friction(cfg, model)
     ops = operating_points(cfg.load)

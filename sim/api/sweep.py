@@ -5,9 +5,11 @@ Result cache (nothing lost, nothing redone)
     ``load`` node and without where-to-write keys (``output.file``, ``output.cache_dir``), plus
     the case (Fa, Fr, speed, tilt, oil_temperature) and a fingerprint of the code (the sources
     of ``sim/``, numpy, numba and xarray versions). A converged case is written atomically to
-    ``<output.cache_dir>/<key[:2]>/<key>.pkl`` (the Dataset as ``to_dict`` arrays, pickled: 2 ms
-    to read against 60 ms for a NetCDF file); a run first looks there and only computes what
-    is missing. Failed and unconverged cases are never cached, so a re-run recomputes them.
+    ``<output.cache_dir>/<key[:2]>/<key>.json`` (:func:`encode_case`: JSON with every array as
+    dtype, shape and raw bytes in base64, bit exact and never unpickled; a few ms to read against
+    60 ms for a NetCDF file); a run first looks there and only computes what is missing, and an
+    entry that does not parse as one converged case of that key is deleted and recomputed.
+    Failed and unconverged cases are never cached, so a re-run recomputes them.
     The cache does not depend on the sweep folder: the same command in a new folder (Hydra's
     ``${now:...}``), an overlapping sweep or a single run reuses every finished case, and a
     killed sweep loses at most the cases that were being computed.
@@ -25,14 +27,15 @@ Multirun (``python -m sim.run --multirun ...``, :class:`SweepCallback`)
 Command line: ``python -m sim.api.sweep collect DIR`` re-collects any sweep folder.
 """
 import argparse
+import base64
 import copy
 import hashlib
+import itertools
 import json
 import logging
 import os
-import pickle
+import secrets
 import sys
-import tempfile
 import time
 from functools import lru_cache
 from importlib import import_module
@@ -55,7 +58,7 @@ MANIFEST = "sweep.json"       # job list written before the first job
 FAILED = "failed.json"        # a job's error, written instead of its result
 SWEEP_FILE = "sweep.nc"       # the merged dataset
 NOT_IN_KEY = ("file", "cache_dir")  # output keys that say where to write, not what to compute
-BASIC_SWEEPER = "hydra._internal.core_plugins.basic_sweeper.BasicSweeper"
+BASIC_SWEEPER = "basic"       # the hydra/sweeper choice whose job list sweep_jobs forms
 
 
 # ------------------------------------------------------------------ cache keys and cached cases
@@ -116,15 +119,105 @@ def cache_file(cfg, op, base=None):
     if cfg.output.cache_dir is None:
         return None
     key = case_key(base or _key_base(cfg), op)
-    return Path(cfg.output.cache_dir) / key[:2] / f"{key}.pkl"
+    return Path(cfg.output.cache_dir) / key[:2] / f"{key}{CACHE_SUFFIX}"
 
 
-def _cached(path):
-    """The cached one-case Dataset at ``path``, or None (absent or unreadable: then removed)."""
+# ------------------------------------------------------------------ the cache file format
+CACHE_SUFFIX = ".json"
+CACHE_FORMAT = "sim.api.sweep case cache"
+CACHE_VERSION = 1
+ARRAY_KINDS = "biufcUSMm"   # bool, integers, floats, complex, fixed-width text, dates: raw bytes, no objects
+
+
+def _encode_array(values):
+    """A numpy array as JSON-able ``{"dtype", "shape", "data"}``: its C-order bytes in base64 (bit exact)."""
+    arr = np.asarray(values)
+    if arr.dtype.kind not in ARRAY_KINDS:
+        raise TypeError(f"cannot cache an array of dtype {arr.dtype} (only {ARRAY_KINDS} kinds, no objects)")
+    return {"dtype": arr.dtype.str, "shape": list(arr.shape),
+            "data": base64.b64encode(np.ascontiguousarray(arr).tobytes()).decode("ascii")}
+
+
+def _decode_array(node):
+    """Inverse of :func:`_encode_array`; refuses object and structured dtypes and a wrong byte count."""
+    dtype = np.dtype(node["dtype"])
+    if dtype.kind not in ARRAY_KINDS or dtype.fields is not None:
+        raise ValueError(f"dtype {node['dtype']!r} is not a plain array dtype")
+    shape = tuple(int(n) for n in node["shape"])
+    return np.frombuffer(base64.b64decode(node["data"], validate=True), dtype=dtype).reshape(shape).copy()
+
+
+def _encode_attrs(attrs):
+    """Attributes as JSON: str, bool, int, float and lists of them as they are, numpy values tagged."""
+    out = {}
+    for name, value in attrs.items():
+        if isinstance(value, (np.ndarray, np.generic)):
+            out[name] = {"ndarray": _encode_array(value)}
+        elif isinstance(value, (str, bool, int, float)) or (
+                isinstance(value, (list, tuple)) and all(isinstance(v, (str, bool, int, float)) for v in value)):
+            out[name] = value
+        else:
+            raise TypeError(f"cannot cache attribute {name!r} of type {type(value).__name__}")
+    return out
+
+
+def _decode_attrs(node):
+    if not isinstance(node, dict):
+        raise TypeError("attributes are not a JSON object")
+    return {name: _decode_array(v["ndarray"]) if isinstance(v, dict) else v for name, v in node.items()}
+
+
+def encode_case(ds):
+    """A Dataset as the bytes of a cache file: UTF-8 JSON, every array as raw bytes in base64.
+
+    Layout (``CACHE_VERSION`` 1)::
+
+        {"format": "sim.api.sweep case cache", "version": 1, "attrs": {...},
+         "coords": {name: variable, ...}, "data_vars": {name: variable, ...}}
+        variable = {"dims": [...], "dtype": "<f8", "shape": [...], "data": "<base64>", "attrs": {...}}
+
+    Arrays keep dtype, shape and every bit (NaN payloads included); names, dimensions,
+    attributes and their order are kept. Plain data only: nothing is ever unpickled.
+    """
+    def variables(mapping):
+        return {str(name): {"dims": list(v.dims), **_encode_array(v.values), "attrs": _encode_attrs(v.attrs)}
+                for name, v in mapping.items()}
+
+    doc = {"format": CACHE_FORMAT, "version": CACHE_VERSION, "attrs": _encode_attrs(ds.attrs),
+           "coords": variables(ds.coords), "data_vars": variables(ds.data_vars)}
+    return json.dumps(doc, allow_nan=True).encode()
+
+
+def decode_case(data):
+    """The Dataset of :func:`encode_case` bytes; ValueError (or another Exception) if they are not one."""
+    doc = json.loads(data.decode("utf-8"))
+    if not isinstance(doc, dict) or doc.get("format") != CACHE_FORMAT or doc.get("version") != CACHE_VERSION:
+        raise ValueError(f"not a {CACHE_FORMAT!r} file of version {CACHE_VERSION}")
+
+    def variables(node):
+        return {name: xr.Variable(tuple(v["dims"]), _decode_array(v), _decode_attrs(v["attrs"]))
+                for name, v in node.items()}
+
+    return xr.Dataset(variables(doc["data_vars"]), coords=variables(doc["coords"]), attrs=_decode_attrs(doc["attrs"]))
+
+
+def _cached(path, op):
+    """The cached one-case Dataset of case ``op`` at ``path``, or None (absent, or unreadable: then removed).
+
+    An entry is used only if it parses as :func:`encode_case` JSON, is one converged case and
+    is the case ``op``; anything else (a damaged or foreign file) is reported, deleted and
+    recomputed. Nothing is unpickled or executed.
+    """
     if path is None or not path.exists():
         return None
     try:
-        return xr.Dataset.from_dict(pickle.loads(path.read_bytes()))
+        ds = decode_case(path.read_bytes())
+        if ds.sizes.get("case") != 1 or not bool(ds["converged"].all()):
+            raise ValueError("not one converged case")
+        case = [float(ds[name].values[0]) for name in io.CASE_COORDS]
+        if case != [op.Fa, op.Fr, op.speed, op.tilt, op.oil_temperature]:
+            raise ValueError(f"holds case {case}, not {op}")
+        return ds
     except Exception as exc:  # a damaged entry is recomputed, never trusted
         log.warning("cache entry %s unreadable (%s): recomputing", path, exc)
         path.unlink(missing_ok=True)
@@ -132,15 +225,22 @@ def _cached(path):
 
 
 def _write_atomic(path, data):
-    """Write bytes through a unique temporary file in the same folder and an atomic rename."""
+    """Write bytes through a unique temporary file in the same folder and an atomic rename.
+
+    The file is created with mode 0o666 minus the umask, like any file a program writes
+    (``tempfile.mkstemp`` would give 0o600); a reader sees the old file or the new one, never a
+    partial one.
+    """
+    path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    tmp = path.parent / f".{path.name}.{secrets.token_hex(8)}.tmp"
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
     try:
         with os.fdopen(fd, "wb") as f:
             f.write(data)
         os.replace(tmp, path)
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
+        tmp.unlink(missing_ok=True)
         raise
 
 
@@ -150,13 +250,13 @@ def compute_case(cfg, op, path):
     Returns the Dataset and whether it came from the cache. ``cfg`` is a private copy whose
     ``load`` node this function sets to the case.
     """
-    ds = _cached(path)
+    ds = _cached(path, op)
     if ds is not None:
         return ds, True
     cfg.load.update(Fa=op.Fa, Fr=op.Fr, speed=op.speed, tilt=op.tilt, oil_temperature=op.oil_temperature, zip=[])
     ds = simulate(cfg)
     if path is not None and bool(ds.converged.all()):
-        _write_atomic(path, pickle.dumps(ds.to_dict(data="array"), protocol=pickle.HIGHEST_PROTOCOL))
+        _write_atomic(path, encode_case(ds))
     return ds, False
 
 
@@ -218,13 +318,27 @@ def run_job(cfg, out_dir, job, overrides):
 
 # ------------------------------------------------------------------ the multirun around the jobs
 def sweep_jobs(config):
-    """Override lists of the jobs of a multirun, in job order, as Hydra's basic sweeper forms them."""
-    from hydra._internal.core_plugins.basic_sweeper import BasicSweeper
+    """Override lists of the jobs of a multirun, in job order, as Hydra's basic sweeper forms them.
+
+    Public Hydra API only (``OverridesParser``, ``Override``): the sweeper's ``params`` then the
+    command-line overrides, one column per key (a later override of a key replaces an earlier
+    one), each a discrete sweep's values or the single value; the jobs are the Cartesian product
+    of the columns, the last key varying fastest (Hydra's documented ``a=1,2 b=x,y`` order).
+    """
     from hydra.core.override_parser.overrides_parser import OverridesParser
 
     params = OmegaConf.select(config, "hydra.sweeper.params") or {}
     arguments = [f"{k}={v}" for k, v in params.items()] + list(config.hydra.overrides.task)
-    return BasicSweeper.split_arguments(OverridesParser.create().parse_overrides(arguments), None)[0]
+    columns = {}
+    for override in OverridesParser.create().parse_overrides(arguments):
+        key = override.get_key_element()
+        if not override.is_sweep_override():
+            columns[key] = [f"{key}={override.get_value_element_as_str()}"]
+        elif override.is_discrete_sweep():
+            columns[key] = [f"{key}={value}" for value in override.sweep_string_iterator()]
+        else:
+            raise ValueError(f"{key}: the basic sweeper does not support sweep type {override.value_type.name}")
+    return [list(job) for job in itertools.product(*columns.values())]
 
 
 def _kind(cfg):
@@ -292,8 +406,9 @@ class SweepCallback(Callback):
     def on_multirun_start(self, config, **kwargs):
         from hydra import compose
 
-        if config.hydra.sweeper._target_ != BASIC_SWEEPER:
-            log.warning("sweep: %s is not the basic sweeper; no job list, no collection", config.hydra.sweeper._target_)
+        sweeper = (OmegaConf.select(config, "hydra.runtime.choices") or {}).get("hydra/sweeper")
+        if sweeper != BASIC_SWEEPER:
+            log.warning("sweep: hydra/sweeper=%s is not the basic sweeper; no job list, no collection", sweeper)
             return
         jobs = sweep_jobs(config)
         configs, problems = [], []

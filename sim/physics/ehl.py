@@ -12,8 +12,19 @@ modulus of the EHL formulas is Hamrock's ``E' = 2 E*`` (E* of :func:`sim.physics
   the viscosity at the local pressure, Barus or Roelands, in series with the shear modulus G
   over the transit time 2b/u, Johnson & Tevaarwerk 1977) up to a limiting shear stress tau_lim = tau_L0 + c p (Bair & Winer 1979),
   combined smoothly as tau_lim tanh(k |v| / tau_lim).
+- Traction stress, non-Newtonian alternative (:func:`traction_eyring`, same return quantity as
+  :func:`traction_per_speed`): Maxwell-Eyring film (Johnson & Tevaarwerk 1977), the strain rate
+  the sum of an elastic part over the transit time and the Eyring viscous part,
+  v/h = tau_M/(G t) + (tau_E0/eta) sinh(tau_M/tau_E0), smoothly bounded by the limiting shear
+  stress tau = tau_L tanh(tau_M/tau_L).
 - Rolling resistance of the lubricant: Zhou & Hoeprich (1991) hydrodynamic rolling force of a
-  line contact; of the material: elastic hysteresis (Johnson 1985, 9.2).
+  line contact, the Poiseuille shear force on EACH surface; the film dissipates 2 u F (Reynolds,
+  derivation in :func:`rolling_force_hydrodynamic`), i.e. the resisting moment about the relative
+  rolling axis is 2 F R (:func:`rolling_moment_hydrodynamic`); of the material: elastic hysteresis
+  (Johnson 1985, 9.2).
+- Inlet shear heating: thermal reduction factor of film and rolling force (Gupta, Cheng, Zhu,
+  Forster & Schrand 1992), :func:`film_thermal_factor_gupta` with the thermal loading
+  :func:`thermal_loading`.
 - Shear heating of a contact (the thermal reduction of the traction, :mod:`sim.physics.friction`):
   mid-film temperature rise of Couette heating, and the mean flash temperature of the surfaces
   under a moving band heat source (Jaeger 1942, Blok 1937 partition).
@@ -114,10 +125,40 @@ def solid_load_share(h, sigma, B_ZH, C_ZH):
 
 @kernel
 def rolling_force_hydrodynamic(u, q, R, width, eta0, alpha_p, E_prime):
-    """Hydrodynamic rolling force of a line-contact strip [N] (Zhou & Hoeprich 1991).
+    """Hydrodynamic (Poiseuille) rolling force of a line-contact strip, on EACH surface [N].
 
     F = 2.86 E' R l G^0.022 U^0.66 W^0.3 with U = eta0 u/(E' R), W = q/(E' R), G = alpha_p E'
-    and l the strip length (slice width) [mm]; u entrainment speed [mm/s], q [N/mm].
+    and l the strip length (slice width) [mm]; u entrainment (mean) speed [mm/s], q [N/mm]
+    (as Zhou & Hoeprich 1991; their own eq. 17 reads 29.2 (R/alpha) (G U)^0.648 W^0.246).
+
+    Notes
+    -----
+    Rolling loss of the film, from the Reynolds equation (isothermal Newtonian film, viscosity
+    eta(x) uniform across it, surfaces 1 at z = 0 and 2 at z = h moving at U1, U2 along x,
+    u = (U1 + U2)/2, film rupture at x_e with p = dp/dx = 0, h_e = h(x_e)):
+
+    1. Velocity u(z) = U1 + (U2 - U1) z/h + (p'/(2 eta)) (z^2 - z h); flux per unit length
+       q_x = u h - h^3 p'/(12 eta), constant by continuity: h^3 p'/(12 eta) = u (h - h_e).
+    2. Shear of the film on the surfaces (+x): tau_1 = eta (U2 - U1)/h - (h/2) p',
+       tau_2 = -eta (U2 - U1)/h - (h/2) p'. The Poiseuille part -(h/2) p' is the SAME on both
+       surfaces: in pure rolling each surface is retarded by F = int (h/2) p' dx (> 0: the
+       inlet, where p' > 0 and h is large, outweighs the outlet).
+    3. Dissipation D = int int eta (du/dz)^2 dz dx = int [eta (U2 - U1)^2/h + h^3 p'^2/(12 eta)] dx.
+       With step 1, int h^3 p'^2/(12 eta) dx = u int p' (h - h_e) dx = u int p' h dx (p = 0 at
+       both ends), hence
+           D = -(tau_1 U1 + tau_2 U2) integrated = eta-Couette part + 2 u F:
+       the power taken from the two surfaces, both at speed u, is 2 u F.
+    4. Moments: the pressure acts normal to each surface (through the roller axis for the
+       roller), so only the shear turns a body; with the rolling speeds u = omega_1 R_1 =
+       omega_2 R_2 and 1/R = 1/R_1 + 1/R_2, the couple between roller and ring about the axis of
+       relative rolling (omega_rel = u/R) that dissipates 2 u F is M = 2 F R. Equivalently
+       (integrating step 2 by parts, h' = x/R plus the elastic term whose moment vanishes by the
+       symmetry of the log kernel) the pressure centre lies e = 2 F R/q upstream of the line of
+       centres: q e = 2 F R, the form of Zhou & Hoeprich and Biboulet & Houpert (2010).
+
+    A model that applies F R as the couple (power F u) counts the loss once; Reynolds puts it on
+    both surfaces. ``tests/friction/test_rolling_resistance.py`` checks this against a numerical
+    1-D line-contact solution (:mod:`tests.friction.reynolds_1d`).
     """
     if u <= 0.0 or q <= 0.0:
         return 0.0
@@ -125,6 +166,83 @@ def rolling_force_hydrodynamic(u, q, R, width, eta0, alpha_p, E_prime):
     W = q / (E_prime * R)
     G = alpha_p * E_prime
     return 2.86 * E_prime * R * width * G ** 0.022 * U ** 0.66 * W ** 0.3
+
+
+@kernel
+def rolling_moment_hydrodynamic(u, q, R, width, eta0, alpha_p, E_prime):
+    """Resisting couple of the EHL rolling loss of a line-contact strip [N mm].
+
+    M = 2 F R with F the Poiseuille force on each surface (:func:`rolling_force_hydrodynamic`)
+    and R the radius of relative curvature [mm]: with the relative rolling speed omega_rel =
+    u/R it dissipates M omega_rel = 2 u F, the Reynolds-equation loss of the film (derivation
+    in :func:`rolling_force_hydrodynamic`, Notes 3-4). Arguments as there.
+    """
+    return 2.0 * R * rolling_force_hydrodynamic(u, q, R, width, eta0, alpha_p, E_prime)
+
+
+@kernel
+def thermal_loading(eta0, beta, u, k_oil):
+    """Thermal loading parameter of inlet shear heating, L = eta0 beta u^2 / k [1].
+
+    L = -(d eta/dT) u^2 / k_f with -(d eta/dT) = eta0 beta at the inlet temperature (Gupta et al.
+    1992; Zhou & Hoeprich 1991; Wilson & Sheu 1983 use the same group).
+
+    Parameters
+    ----------
+    eta0 : float
+        Inlet (bulk oil) viscosity at ambient pressure [MPa s].
+    beta : float
+        Temperature-viscosity coefficient -d ln(eta)/dT [1/K]
+        (:meth:`sim.physics.lubricant.Lubricant.temperature_viscosity_coefficient`).
+    u : float
+        Entrainment (rolling, mean surface) speed [mm/s].
+    k_oil : float
+        Thermal conductivity of the oil [W/(m K)] (= N/(s K) in any length unit).
+
+    Returns
+    -------
+    float
+        L [1]: eta0 [N s/mm^2] u^2 [mm^2/s^2] = [N/s] over k [N/(s K)] times beta [1/K].
+    """
+    return eta0 * beta * u * u / k_oil
+
+
+@kernel
+def film_thermal_factor_gupta(p_h, E_prime, L, srr):
+    """Inlet shear-heating reduction factor of the EHL film, phi_T [1] (Gupta et al. 1992).
+
+    phi_T = [1 - 13.2 (p_h/E') L^0.42] / [1 + 0.213 (1 + 2.23 |S|^0.83) L^0.64]
+
+    Gupta, Cheng, Zhu, Forster & Schrand, "Viscoelastic effects in MIL-L-7808-type lubricant,
+    Part I: Analytical formulation", Tribology Transactions 35(2) (1992) 269-274, fit to thermal
+    inlet-zone EHL solutions; the same form is quoted for the rolling force (F = phi_T F_iso,
+    Zhou & Hoeprich 1991, eqs. 21-22) and by Wingertszahn et al. (2023, Lubricants 11, 369,
+    eqs. 12-14). The expression is transcribed from those quotations (project file
+    reference/friction_literature.md); the 1992 paper itself was not readable here.
+
+    Parameters
+    ----------
+    p_h : float
+        Maximum Hertz pressure [MPa].
+    E_prime : float
+        Reduced modulus E' = 2 E* [MPa] (Hamrock's, as in :func:`film_line`).
+    L : float
+        Thermal loading, :func:`thermal_loading` [1], >= 0.
+    srr : float
+        Slide-to-roll ratio S = (U1 - U2)/u [1] (its magnitude is used).
+
+    Returns
+    -------
+    float
+        phi_T in [0, 1]: 1 at L = 0, decreasing in L and in |S|. The numerator reaches 0 at
+        L = (E'/(13.2 p_h))^(1/0.42), far beyond the fitted range; it is floored at 0 there.
+    """
+    if L <= 0.0:
+        return 1.0
+    num = 1.0 - 13.2 * (p_h / E_prime) * L ** 0.42
+    if num <= 0.0:
+        return 0.0
+    return num / (1.0 + 0.213 * (1.0 + 2.23 * abs(srr) ** 0.83) * L ** 0.64)
 
 
 @kernel
@@ -237,4 +355,122 @@ def traction_per_speed(p, v, h, phi, eta_p, tau0, c_tau, mu_s, v_s, G, t_transit
         tau_lim = tau0 + c_tau * p
         k = 1.0 / (h * (1.0 / eta_p + 1.0 / (G * t_transit)))   # [MPa s/mm]
         g += (1.0 - phi) * k * _tanh_over_x(k * v / tau_lim)
+    return g
+
+
+@kernel
+def eyring_maxwell_stress(S, De):
+    """Stress of a Maxwell-Eyring film at a given strain rate, x = tau/tau_E0 [1].
+
+    Solves De x + sinh(x) = S for x >= 0: the steady strain rate gamma_dot of a Maxwell element
+    with an Eyring dashpot, gamma_dot = tau/(G t) + (tau_E0/eta) sinh(tau/tau_E0) (Johnson &
+    Tevaarwerk 1977, eq. (3) with the elastic rate over the transit time t taken as tau/(G t), the
+    approximation :func:`traction_per_speed` makes for the Maxwell fluid), divided by
+    tau_E0/eta: S = eta gamma_dot/tau_E0 (the Eyring number), De = eta/(G t) (a Deborah number).
+
+    Newton from x0 = min(asinh(S), S/De) >= root: f(x) = De x + sinh(x) - S is increasing and
+    convex on x >= 0, so the iterates fall monotonically to the root (no overshoot) and converge
+    quadratically; a fixed cap of 100 iterations is never reached for S, De in [0, 1e300].
+
+    Parameters
+    ----------
+    S : float
+        Eyring number eta gamma_dot / tau_E0 [1], >= 0.
+    De : float
+        eta / (G t) [1], >= 0 (0: purely viscous Eyring).
+
+    Returns
+    -------
+    x : float
+        tau / tau_E0 [1].
+    converged : bool
+    iterations : int
+    residual : float
+        |De x + sinh x - S| / max(S, 1e-300) [1].
+    """
+    if S <= 0.0:
+        return 0.0, True, 0, 0.0
+    x = np.arcsinh(S)
+    if De > 0.0:
+        x = min(x, S / De)
+    it = 0
+    converged = False
+    for it in range(1, 101):
+        f = De * x + np.sinh(x) - S
+        dx = f / (De + np.cosh(x))
+        x -= dx
+        if x <= 0.0:            # cannot happen for convex f started right of the root; guard only
+            x = 0.5 * S / (1.0 + De)
+        if abs(dx) <= 1e-15 * x + 1e-300:
+            converged = True
+            break
+    res = abs(De * x + np.sinh(x) - S) / max(S, 1e-300)
+    return x, converged, it, res
+
+
+@kernel
+def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_transit):
+    """Traction stress over sliding speed of an Eyring (Maxwell-Eyring) film, tau/|v| [MPa s/mm].
+
+    Drop-in alternative to :func:`traction_per_speed` (same arguments in the same places, the
+    Eyring stress ``tau_E0`` added; same return quantity, the traction on a surface is the
+    returned ratio times -v):
+
+        tau = phi mu_s p tanh(|v|/v_s) + (1 - phi) tau_L tanh(tau_M / tau_L),
+        tau_L = tau_L0 + c_tau p,
+        |v|/h = tau_M/(G t) + (tau_E0/eta(p)) sinh(tau_M/tau_E0).
+
+    The film stress tau_M is the Maxwell-Eyring law of Johnson & Tevaarwerk (1977, Proc. R. Soc.
+    Lond. A 356, 215-236), elastic rate over the transit time t (as in traction_per_speed) plus
+    the Ree-Eyring viscous rate (Eyring 1936; Evans & Johnson 1986, Proc. IMechE C 200);
+    :func:`eyring_maxwell_stress` solves it. The limiting shear stress tau_L (Bair & Winer 1979,
+    ASME J. Lubr. Technol. 101: tau_L rising linearly with pressure) bounds it
+    smoothly by tanh, the form of the project's solid part and of the issue's request.
+
+    The papers are cited as in the tribology literature (Greenwood 2020, Lubricants 8, 51, and
+    the project's reference/friction_literature.md); their texts were not read in this session,
+    the equations are the standard forms they are known for.
+
+    Regimes: |v| -> 0: tau/|v| -> 1/(h (1/eta + 1/(G t))), the slope of traction_per_speed
+    (linear, Newtonian eta/h when G t >> eta); moderate slip: tau_M ~ tau_E0 ln(2 eta |v|/(h
+    tau_E0)), the logarithmic Eyring rise that Newtonian-then-limited laws lack; high slip:
+    tau -> tau_L (the plateau). With tau_E0 -> inf the law is traction_per_speed's
+    Maxwell-Newtonian film except for its tanh limit (here of tau_M, there of k |v|, the same).
+
+    Parameters
+    ----------
+    p : float
+        Contact pressure [MPa].
+    v : float
+        Sliding speed |v| [mm/s].
+    h : float
+        Film thickness [mm] (0: no film, phi must then be 1).
+    phi : float
+        Solid load share (5.16) [1].
+    eta_p : float
+        Film viscosity at the pressure p [MPa s] (:func:`pressure_viscosity`).
+    tau_E0 : float
+        Eyring stress [MPa], > 0; mineral oils 2-10 MPa (Johnson & Tevaarwerk 1977; Evans &
+        Johnson 1986), ~ 2 Lambda/alpha after Bair & Winer.
+    tau_L0 [MPa], c_tau [1], mu_s [1], v_s [mm/s], G [MPa] :
+        Limiting shear stress at zero pressure and its pressure slope, solid friction
+        coefficient and its regularising speed, elastic shear modulus of the film.
+    t_transit : float
+        Transit time through the contact, contact length / entrainment speed [s] (1e300: no
+        elastic part).
+
+    Returns
+    -------
+    float
+        tau/|v| [MPa s/mm], finite at v = 0 (its limit).
+    """
+    g = phi * mu_s * p * _tanh_over_x(v / v_s) / v_s
+    if phi < 1.0 and h > 0.0:
+        tau_L = tau_L0 + c_tau * p
+        De = eta_p / (G * t_transit)
+        S = eta_p * v / (h * tau_E0)
+        x, conv, it, res = eyring_maxwell_stress(S, De)
+        r = x / S if S > 0.0 else 1.0 / (1.0 + De)      # tau_M/(tau_E0 S) = tau_M h/(eta |v|)
+        tau_M = tau_E0 * x
+        g += (1.0 - phi) * (eta_p / h) * r * _tanh_over_x(tau_M / tau_L)
     return g

@@ -12,7 +12,7 @@ PACKAGES = ("sim", "studies", "surrogate")
 
 # (module prefix, layer): the longest matching prefix decides; lower numbers are lower layers
 LAYERS = [
-    ("sim.errors", 0), ("sim._math", 0),
+    ("sim.errors", 0), ("sim.config_schema", 0), ("sim._math", 0),
     ("sim.geometry", 1),
     ("sim.physics", 2),
     ("sim.solvers", 3),

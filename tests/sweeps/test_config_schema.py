@@ -1,4 +1,4 @@
-"""Config schemas (sim/schema.py): every shipped config composes and passes; a typo or an
+"""Config schemas (sim/config_schema.py, validated by sim.api.schema): every shipped config composes and passes; a typo or an
 out-of-range value is refused naming the key and what is allowed; every value has its source."""
 import re
 

@@ -23,7 +23,7 @@ from omegaconf import OmegaConf
 import sim
 import sim.api.sweep
 from sim.api.simulation import simulate
-from sim.api.sweep import SweepCallback, collect, run_job
+from sim.api.sweep import CACHE_SUFFIX, SweepCallback, collect, run_job
 from tests.sweeps.common import FAST, REPO, SWEEP, multirun
 
 PER_RUN = {"wall_time"}  # solver time of a case: differs between two computations of the same point
@@ -92,7 +92,7 @@ def test_killed_sweep_resumes_to_the_uninterrupted_dataset(parallel_sweep, tmp_p
            f"hydra.sweep.dir={first}"]
     proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
-        while proc.poll() is None and not any(cache.rglob("*.pkl")):
+        while proc.poll() is None and not any(cache.rglob(f"*{CACHE_SUFFIX}")):
             time.sleep(0.01)
     finally:
         if proc.poll() is None:
@@ -100,12 +100,12 @@ def test_killed_sweep_resumes_to_the_uninterrupted_dataset(parallel_sweep, tmp_p
         proc.wait()
     assert proc.returncode == -signal.SIGKILL, "the sweep finished before it could be killed"
     assert not (first / "sweep.nc").exists()
-    kept = {p: p.stat().st_mtime_ns for p in cache.rglob("*.pkl")}
+    kept = {p: p.stat().st_mtime_ns for p in cache.rglob(f"*{CACHE_SUFFIX}")}
 
     resumed = multirun(SWEEP, first, cache)
     assert resumed.returncode == 0, resumed.stderr[-3000:]
     assert f"{len(kept)} already in the cache" in resumed.stdout
-    assert len(list(cache.rglob("*.pkl"))) == 8  # every computable point, each written once:
+    assert len(list(cache.rglob(f"*{CACHE_SUFFIX}"))) == 8  # every computable point, each written once:
     assert {p: p.stat().st_mtime_ns for p in kept} == kept  # what the killed run finished is not redone
     ds = xr.load_dataset(first / "sweep.nc")
     uninterrupted = xr.load_dataset(parallel_sweep.nc)

@@ -1,8 +1,13 @@
 """The result cache of sim.api.sweep: a re-run computes nothing, an interrupted run resumes, a damaged
 or unconverged entry is recomputed, and the key follows what is computed, not where it is written.
+Cache files are JSON (issue 13 item 6): bit-exact arrays, nothing ever unpickled, normal file modes.
 """
+import json
 import logging
+import os
+import pickle
 
+import numpy as np
 import pytest
 import xarray as xr
 from omegaconf import OmegaConf
@@ -10,7 +15,7 @@ from omegaconf import OmegaConf
 import sim
 import sim.api.sweep
 from sim.api.cases import operating_points
-from sim.api.sweep import _key_base, cache_file, case_key, run_cases
+from sim.api.sweep import CACHE_SUFFIX, _key_base, cache_file, case_key, decode_case, encode_case, run_cases
 from tests.sweeps.common import FAST
 
 GRID = ["load.Fa=[3000,5000]", "load.Fr=[0,2000]"]  # 4 cases in one run
@@ -58,7 +63,7 @@ def test_interrupted_run_resumes_to_the_same_result(tmp_path, calls):
     calls.fail_at = 3
     with pytest.raises(KeyboardInterrupt):
         run_cases(config(tmp_path / "a"), progress=False)
-    assert len(list((tmp_path / "a").rglob("*.pkl"))) == 2
+    assert len(list((tmp_path / "a").rglob(f"*{CACHE_SUFFIX}"))) == 2
     calls.n, calls.fail_at = 0, None
     resumed, n = run_cases(config(tmp_path / "a"), progress=False)
     assert calls.n == 2 and n["cached"] == 2
@@ -69,7 +74,7 @@ def test_interrupted_run_resumes_to_the_same_result(tmp_path, calls):
 def test_damaged_entry_is_recomputed(tmp_path, calls, caplog):
     """A cache entry that cannot be read is reported, deleted and recomputed, never trusted."""
     first, _ = run_cases(config(tmp_path), progress=False)
-    entry = sorted(tmp_path.rglob("*.pkl"))[0]
+    entry = sorted(tmp_path.rglob(f"*{CACHE_SUFFIX}"))[0]
     entry.write_bytes(entry.read_bytes()[:100])
     with caplog.at_level(logging.WARNING, logger="sim.api.sweep"):
         again, n = run_cases(config(tmp_path), progress=False)
@@ -85,7 +90,7 @@ def test_unconverged_cases_are_recomputed(tmp_path, calls):
     ds, n = run_cases(config(tmp_path, "solver.max_iterations=1"), progress=False)
     unconverged = int((~ds.converged).sum())
     assert unconverged == n["not_converged"] >= 2
-    assert len(list(tmp_path.rglob("*.pkl"))) == 4 - unconverged
+    assert len(list(tmp_path.rglob(f"*{CACHE_SUFFIX}"))) == 4 - unconverged
     run_cases(config(tmp_path, "solver.max_iterations=1"), progress=False)
     assert calls.n == 4 + unconverged
 
@@ -120,3 +125,132 @@ def test_code_fingerprint_covers_every_layer_of_sim():
     names = {str(path.relative_to(sim.api.sweep.SIM_ROOT)) for path in sim.api.sweep.fingerprint_sources()}
     for required in ("physics/friction.py", "solvers/quasi_static.py", "_math/jit.py", "geometry.py", "api/simulation.py"):
         assert required in names
+
+
+def assert_bit_identical(a, b):
+    """Same data variables and coordinates, each in order, with the same dims, dtype, shape, attrs and bytes."""
+    assert list(a.data_vars) == list(b.data_vars) and list(a.coords) == list(b.coords)
+    assert a.attrs == b.attrs
+    for name, v in a.variables.items():
+        w = b.variables[name]
+        assert (v.dims, v.dtype, v.shape, v.attrs) == (w.dims, w.dtype, w.shape, w.attrs), name
+        assert v.values.tobytes() == w.values.tobytes(), name
+
+
+def test_cached_result_round_trips_bit_identically(tmp_path):
+    """A full case (friction on: every output, bools, int32 iterations, text coordinates) read back
+    from its cache file equals the computed Dataset bit for bit; NaN (two payloads), infinities,
+    0-d, empty and non-native-endian arrays and numpy attributes survive the format too."""
+    cfg = sim.load_config(["solver.n_slices=8", "load.Fa=3000", "load.Fr=2000", f"output.cache_dir={tmp_path}"])
+    op = operating_points(cfg.load)[0]
+    computed, hit = sim.api.sweep.compute_case(cfg.copy(), op, cache_file(cfg, op))
+    assert not hit and "torque_component" in computed
+    read, hit = sim.api.sweep.compute_case(cfg.copy(), op, cache_file(cfg, op))
+    assert hit
+    assert_bit_identical(computed, read)
+    xr.testing.assert_identical(computed, read)
+
+    odd = computed.copy(deep=True)
+    nan2 = np.frombuffer(np.uint64(0x7FF8_0000_DEAD_BEEF).tobytes(), dtype=np.float64)[0]
+    odd["pmax"].values[0, 0] = [np.nan, nan2]
+    odd["L_eff"].values[0, 0] = np.inf
+    odd["scalar"] = xr.Variable((), np.int16(-7))
+    odd["empty"] = xr.Variable(("nothing",), np.zeros(0, dtype=np.float32))
+    odd["big_endian"] = xr.Variable(("slice",), np.arange(8, dtype=">i8"))
+    odd["when"] = xr.Variable(("design",), np.array(["2024-01-02T03:04:05"], dtype="datetime64[ns]"))
+    odd.attrs.update(number=np.float32(1.5), flags=np.array([1, 2], dtype=np.uint8), nan=float("nan"))
+    back = decode_case(encode_case(odd))
+    assert_bit_identical(odd.drop_attrs(deep=False), back.drop_attrs(deep=False))
+    assert back.attrs["number"].dtype == np.float32 and back.attrs["flags"].tolist() == [1, 2]
+    assert np.isnan(back.attrs["nan"]) and back["pmax"].values.tobytes() == odd["pmax"].values.tobytes()
+
+
+def test_object_arrays_are_not_cached():
+    ds = xr.Dataset({"x": ("a", np.array([{"code": 1}], dtype=object))})
+    with pytest.raises(TypeError, match="dtype object"):
+        encode_case(ds)
+
+
+class Payload:
+    """What a crafted pickle does when loaded: here it only makes a folder, the proof it ran."""
+
+    def __init__(self, marker):
+        self.marker = str(marker)
+
+    def __reduce__(self):
+        return os.mkdir, (self.marker,)
+
+
+def foreign_entries(marker, other_entry):
+    """Files an attacker or a crash could leave at a cache path, none of which may be used."""
+    dtype_object = json.loads(other_entry)
+    next(iter(dtype_object["data_vars"].values()))["dtype"] = "|O"
+    return {"pickle": pickle.dumps(Payload(marker)), "garbage": os.urandom(3000), "empty": b"",
+            "json of another format": b'{"format": "pickle", "version": 1}',
+            "object dtype": json.dumps(dtype_object).encode(), "another case": other_entry}
+
+
+@pytest.mark.parametrize("kind", ["pickle", "garbage", "empty", "json of another format", "object dtype",
+                                  "another case"])
+def test_foreign_file_at_a_cache_path_is_never_used(tmp_path, calls, caplog, kind):
+    """A crafted pickle (at the cache path and at the old ``.pkl`` name), random bytes, or JSON that
+    is not one converged case of that key: never executed nor trusted; the case is recomputed,
+    gives the result of a clean run and replaces the file with a valid entry."""
+    clean, _ = run_cases(config(tmp_path / "clean"), progress=False)
+    cfg = config(tmp_path / "cache")
+    ops = operating_points(cfg.load)
+    path, other = cache_file(cfg, ops[0]), cache_file(config(tmp_path / "clean"), ops[1])
+    marker = tmp_path / "payload_ran"
+    path.parent.mkdir(parents=True)
+    path.write_bytes(foreign_entries(marker, other.read_bytes())[kind])
+    path.with_suffix(".pkl").write_bytes(pickle.dumps(Payload(marker)))
+    calls.n = 0
+    with caplog.at_level(logging.WARNING, logger="sim.api.sweep"):
+        ds, n = run_cases(cfg, progress=False)
+    assert not marker.exists()
+    assert n["computed"] == 4 and calls.n == 4
+    assert "unreadable" in caplog.text and str(path) in caplog.text
+    xr.testing.assert_identical(without_run_times(ds), without_run_times(clean))
+    assert decode_case(path.read_bytes()).Fa.item() == ops[0].Fa
+    assert path.with_suffix(".pkl").exists()  # an old-format file is ignored, not read
+
+
+def test_no_pickle_is_read_anywhere_in_the_sweep_module(monkeypatch, tmp_path):
+    """Belt and braces: with pickle.loads/load unusable, caching and reading back still work."""
+    def refuse(*args, **kwargs):
+        raise AssertionError("pickle used")
+
+    monkeypatch.setattr(pickle, "loads", refuse)
+    monkeypatch.setattr(pickle, "load", refuse)
+    run_cases(config(tmp_path), progress=False)
+    _, n = run_cases(config(tmp_path), progress=False)
+    assert n["cached"] == 4
+
+
+@pytest.mark.parametrize("umask, mode", [(0o022, 0o644), (0o027, 0o640), (0o002, 0o664)])
+def test_cache_files_are_ordinary_files(tmp_path, umask, mode):
+    """Entries get 0o666 minus the umask (not mkstemp's 0o600); no temporary file is left behind."""
+    old = os.umask(umask)
+    try:
+        run_cases(config(tmp_path), progress=False)
+    finally:
+        os.umask(old)
+    entries = list(tmp_path.rglob("*"))
+    files = [p for p in entries if p.is_file()]
+    assert len(files) == 4 and all(p.suffix == CACHE_SUFFIX for p in files)
+    assert {p.stat().st_mode & 0o777 for p in files} == {mode}
+
+
+def test_interrupted_write_leaves_the_old_entry_or_none(tmp_path, monkeypatch):
+    """A crash between writing the temporary file and the rename: the entry is absent (recomputed
+    next time), no partial file is at the cache path and the temporary file is removed."""
+    cfg = config(tmp_path)
+    op = operating_points(cfg.load)[0]
+
+    def crash(src, dst):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(sim.api.sweep.os, "replace", crash)
+    with pytest.raises(KeyboardInterrupt):
+        sim.api.sweep.compute_case(cfg.copy(), op, cache_file(cfg, op))
+    assert [p for p in tmp_path.rglob("*") if p.is_file()] == []
