@@ -7,7 +7,7 @@ import numpy as np
 
 from sim.errors import InputError, check_range
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
-from sim.physics.friction import (EV_FT, EV_P0, EV_TOUT, NC, NEV, BearingArrays, FilmState, FrictionCase,
+from sim.physics.friction import (TRACTION_LAWS, EV_FT, EV_P0, EV_TOUT, NC, NEV, BearingArrays, FilmState, FrictionCase,
                                   FrictionParams, WidthQuadrature, lubrication_state, roller_friction)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.roller_contact import contact_frames, empty_frames
@@ -103,11 +103,13 @@ class FrictionModel:
         self.par = FrictionParams(
             eta0=np.nan, alpha=float(lubricant.pressure_viscosity), Z=np.nan,
             pv_model=PRESSURE_VISCOSITY_MODELS[lubricant.pressure_viscosity_model], beta=np.nan,
+            traction_law=TRACTION_LAWS[str(friction["traction_law"])], tau_E=float(lubricant.eyring_stress),
             tau0=float(lubricant.limiting_shear_stress_0), c_tau=float(lubricant.limiting_shear_coefficient),
             G=float(lubricant.shear_modulus), mu_s=mu_s, v_s=v_s, hysteresis=hysteresis, mu_cage=mu_cage,
             sigma=sigma, B_ZH=B_ZH, C_ZH=C_ZH, sigma_rib=sigma_rib, B_ZH_rib=B_ZH_rib, C_ZH_rib=C_ZH_rib,
             film=FILM_FORMULAS[film], drag_k=np.nan, thermal=thermal, k_oil=float(lubricant.thermal_conductivity),
-            k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol)
+            k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol,
+            inlet_heating=bool(friction["inlet_shear_heating"]))
         self.quad = WidthQuadrature(tq, wq)
 
     def evaluate(self, op, raw, start=None):

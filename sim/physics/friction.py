@@ -52,8 +52,8 @@ from sim._math.jit import kernel
 from sim._math.roots import root_search, root_search_step
 from sim.physics.contact import hertz_line_half_width, hertz_line_pressure
 from sim.physics.ehl import (film_line, film_point, film_temperature_rise, flash_temperature_rise, pressure_viscosity,
-                             rolling_force_hydrodynamic, rolling_force_hysteresis, solid_load_share,
-                             traction_per_speed)
+                             rolling_force_hysteresis, rolling_moment_hydrodynamic, solid_load_share, thermal_loading,
+                             film_thermal_factor_gupta, traction_eyring, traction_per_speed)
 
 # Loss and torque channels of the kernels (order of the DATA.md `component` coordinate).
 COMPONENTS = ["rolling", "hysteresis", "sliding", "drilling", "rib", "cage", "drag"]
@@ -73,6 +73,8 @@ FrictionParams = namedtuple("FrictionParams", [
     "Z",            # 1, Roelands pressure-viscosity index at the oil temperature (per case)
     "pv_model",     # int, pressure-viscosity law: sim.physics.ehl.PV_BARUS or PV_ROELANDS
     "beta",         # 1/K, temperature-viscosity coefficient at the oil temperature (per case)
+    "traction_law", # int, film traction law: TRACTION_EYRING or TRACTION_NEWTON_LIMITED (module constants)
+    "tau_E",        # MPa, Eyring stress tau_E0 of the Maxwell-Eyring law (sim.physics.ehl.traction_eyring)
     "tau0",         # MPa, limiting shear stress at zero pressure
     "c_tau",        # 1, pressure coefficient of the limiting shear stress
     "G",            # MPa, elastic shear modulus of the film (Maxwell traction)
@@ -93,7 +95,25 @@ FrictionParams = namedtuple("FrictionParams", [
     "k_steel",      # W/(m K), thermal conductivity of the steel (flash temperature)
     "kappa_steel",  # mm^2/s, thermal diffusivity of the steel
     "dT_tol",       # K, tolerance of the film temperature solve
+    "inlet_heating",  # bool, inlet shear heating thins the film and the rolling loss (Gupta et al. 1992)
 ])
+
+# Film traction laws (config friction.traction_law): the Maxwell-Eyring film limited by tau_L
+# (sim.physics.ehl.traction_eyring, the default) or the earlier Newtonian/Maxwell film limited
+# by tau_L (sim.physics.ehl.traction_per_speed).
+TRACTION_EYRING = 0
+TRACTION_NEWTON_LIMITED = 1
+TRACTION_LAWS = {"eyring": TRACTION_EYRING, "newton_limited": TRACTION_NEWTON_LIMITED}
+
+
+@kernel
+def _traction(par, p, v, h, phi, eta_p, t_transit):
+    """Traction stress over sliding speed tau/|v| [MPa s/mm] of the configured film law, thesis (5.17)."""
+    if par.traction_law == TRACTION_EYRING:
+        return traction_eyring(p, v, h, phi, eta_p, par.tau_E, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G,
+                               t_transit)
+    return traction_per_speed(p, v, h, phi, eta_p, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G, t_transit)
+
 
 # The solved bearing as the friction kernels read it (numba-supported named tuple).
 BearingArrays = namedtuple("BearingArrays", [
@@ -111,7 +131,7 @@ BearingArrays = namedtuple("BearingArrays", [
 FilmState = namedtuple("FilmState", [
     "h",            # (Z, 2, N) film thickness [mm]
     "Phi",          # (Z, 2, N) solid load share [1]
-    "Fh",           # (Z, 2, N) hydrodynamic rolling force [N]
+    "Fh",           # (Z, 2, N) hydrodynamic rolling force of both surfaces together [N] (couple Fh R_eq)
     "Fy",           # (Z, 2, N) hysteresis rolling force [N]
     "p0",           # (Z, 2, N) Hertz pressure [MPa]
     "b",            # (Z, 2, N) Hertz half-width [mm]
@@ -176,7 +196,7 @@ def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, quad):
             v = abs(st)
             weight = 1.0
         eta_p = pressure_viscosity(p, eta, par.alpha, par.Z, par.pv_model)
-        g = traction_per_speed(p, v, hk, phik, eta_p, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G, NO_RELAXATION)
+        g = _traction(par, p, v, hk, phik, eta_p, NO_RELAXATION)
         q_tot += weight * g * v * v
         q_sol += weight * phik * par.mu_s * p * v * np.tanh(v / par.v_s)
     return q_tot - q_sol, q_tot
@@ -279,13 +299,21 @@ def lubrication_state(wR, wc, wi, active, case):
                 v1, v2 = _surface_speeds(wR[j], Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
                 u = 0.5 * abs(v1 + v2)
                 R = R_eq[s, k]
-                hk = film_line(u, qk, R, par.eta0, par.alpha, Ep, par.film)
-                h[j, s, k] = hk
-                Phi[j, s, k] = solid_load_share(hk, par.sigma, par.B_ZH, par.C_ZH)
-                Fh[j, s, k] = rolling_force_hydrodynamic(u, qk, R, w, par.eta0, par.alpha, Ep)
                 bk = hertz_line_half_width(qk, R, E_star)
                 b[j, s, k] = bk
                 p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
+                # inlet shear heating thins the film and lowers the Poiseuille rolling force alike
+                # (Zhou & Hoeprich 1991 eq. 22, factor of Gupta et al. 1992)
+                phi_T = 1.0
+                if par.inlet_heating and u > 0.0:
+                    phi_T = film_thermal_factor_gupta(p0[j, s, k], Ep, thermal_loading(par.eta0, par.beta, u, par.k_oil),
+                                                      (v1 - v2) / u)
+                hk = phi_T * film_line(u, qk, R, par.eta0, par.alpha, Ep, par.film)
+                h[j, s, k] = hk
+                Phi[j, s, k] = solid_load_share(hk, par.sigma, par.B_ZH, par.C_ZH)
+                # the film retards both surfaces by F each (Reynolds: dissipation 2 u F, couple
+                # 2 F R, sim.physics.ehl.rolling_moment_hydrodynamic): Fh is the sum of both
+                Fh[j, s, k] = phi_T * rolling_moment_hydrodynamic(u, qk, R, w, par.eta0, par.alpha, Ep) / R
                 Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
                 ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
                 theta = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, par, quad)
@@ -354,7 +382,7 @@ def _slice_friction(j, s, k, wR, Om, case, ev):
         p = p0k * ct
         vy = y * ws
         v = np.sqrt(st * st + vy * vy)
-        g = traction_per_speed(p, v, hk, phik, eta[i], par.tau0, par.c_tau, par.mu_s, par.v_s, par.G, t_transit)
+        g = _traction(par, p, v, hk, phik, eta[i], t_transit)
         dA = 2.0 * w * bk * ct * wq[i]
         Ft -= g * st * dA
         Mn -= g * y * vy * dA
@@ -421,8 +449,7 @@ def roller_friction(j, wR, wc, wi, case, ev):
         st = v1 - v2
         a_rib = np.sqrt(Qrib[j] / (np.pi * prib))                  # Hertz radius [mm]
         t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)
-        g = traction_per_speed(prib, abs(st), film.hrib[j], film.Phirib[j], film.Etarib[j], par.tau0, par.c_tau,
-                               par.mu_s, par.v_s, par.G, t_transit)
+        g = _traction(par, prib, abs(st), film.hrib[j], film.Phirib[j], film.Etarib[j], t_transit)
         F = -g * st * Qrib[j] / prib
         ev[EV_MU] += F * (uz * (Xrib[j, 0] - cr) - ur * (Xrib[j, 1] - cz))
         ev[EV_TZ] += F * Xrib[j, 0]

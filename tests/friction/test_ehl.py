@@ -410,11 +410,11 @@ def test_temperature_viscosity_coefficient_is_the_slope_of_the_oil():
 
 
 def _thermal_par(beta, k_oil, k_s, kappa_s):
-    """Friction parameters of a Newtonian, Barus film: no limiting shear (c_tau = 1e6) and a
+    """Friction parameters of a Newtonian (traction law newton_limited), Barus film: no limiting shear (c_tau = 1e6) and a
     rigid film (G = 1e12 MPa), so the traction is eta(p) v / h exactly enough (relative error of
     tanh(x)/x below 1e-12 here)."""
     par = friction.FrictionParams(**{name: 0.0 for name in friction.FrictionParams._fields})
-    return par._replace(eta0=0.039e-6, alpha=0.021, pv_model=ehl.PV_BARUS, tau0=2.0, c_tau=1e6, G=1e12, mu_s=0.1,
+    return par._replace(traction_law=friction.TRACTION_NEWTON_LIMITED, eta0=0.039e-6, alpha=0.021, pv_model=ehl.PV_BARUS, tau0=2.0, c_tau=1e6, G=1e12, mu_s=0.1,
                         v_s=1.0, film=ehl.FILM_PAN_HAMROCK, thermal=True, beta=beta, k_oil=k_oil, k_steel=k_s,
                         kappa_steel=kappa_s, dT_tol=1e-9)
 
