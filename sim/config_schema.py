@@ -242,6 +242,8 @@ class FrictionConfig:
     film_thickness: str = key(Choice(("dowson_higginson", "pan_hamrock")))
     width_points: Any = key(Number(2, 64, integer=True))
     thermal: bool = key(Flag())
+    traction_law: str = key(Choice(("eyring", "newton_limited")))
+    inlet_shear_heating: bool = key(Flag())
     temperature_tolerance: Any = key(Number(0.0, 10.0, low_open=True, units="K"))
     kinematics: str = key(Choice(("rolling", "traction")))
     max_iterations: Any = key(Number(1, 10000, integer=True))

@@ -44,36 +44,134 @@ Unknowns: omega_R,j (roller moment about u' = 0, per roller) and omega_c (cage m
 rollers and the oil exert on the outer ring equals power loss / omega_i exactly (energy
 balance); the kernels compute both independently so the identity checks the solution.
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim._math.jit import kernel
-from sim._math.roots import illinois
+from sim._math.roots import root_search, root_search_step
 from sim.physics.contact import hertz_line_half_width, hertz_line_pressure
-from sim.physics.ehl import (film_line, film_point, film_temperature_rise, flash_temperature_rise, solid_load_share,
-                     pressure_viscosity, rolling_force_hydrodynamic, rolling_force_hysteresis, traction_per_speed)
+from sim.physics.ehl import (film_line, film_point, film_temperature_rise, flash_temperature_rise, pressure_viscosity,
+                             rolling_force_hysteresis, rolling_moment_hydrodynamic, solid_load_share, thermal_loading,
+                             film_thermal_factor_gupta, traction_eyring, traction_per_speed)
 
 # Loss and torque channels of the kernels (order of the DATA.md `component` coordinate).
 COMPONENTS = ["rolling", "hysteresis", "sliding", "drilling", "rib", "cage", "drag"]
 NC = len(COMPONENTS)
-# roller evaluation vector: M_u, T_z on roller, T_z on outer ring, F_t along e_t (contacts + rib), then powers
+# Roller evaluation vector (the kernels accumulate into it, the solvers sum it over rollers):
+# M_u, T_z on roller, T_z on outer ring, F_t along e_t (contacts + rib), then the powers of COMPONENTS.
 EV_MU, EV_TZ, EV_TOUT, EV_FT = 0, 1, 2, 3
 EV_P0 = 4
+(EV_ROLLING, EV_HYSTERESIS, EV_SLIDING, EV_DRILLING, EV_RIB, EV_CAGE, EV_DRAG) = range(EV_P0, EV_P0 + NC)
 NEV = EV_P0 + NC
-# Friction parameters, packed for the kernels (built by FrictionModel from the config)
-(PAR_ETA0, PAR_ALPHA, PAR_TAU0, PAR_CTAU, PAR_MU_S, PAR_V_S, PAR_HYST, PAR_MU_CAGE, PAR_SIGMA, PAR_B, PAR_C,
- PAR_SIGMA_RIB, PAR_B_RIB, PAR_C_RIB, PAR_EPRIME, PAR_FILM, PAR_DRAG_K, PAR_RHO_M, PAR_G,
- PAR_THERMAL, PAR_BETA, PAR_K_OIL, PAR_K_STEEL, PAR_KAPPA_STEEL, PAR_DT_TOL, PAR_PV_MODEL, PAR_Z) = range(27)
-NPAR = 27
+
+# Friction parameters of one case (numba-supported named tuple; built by
+# sim.api.friction_model.FrictionModel from the config, the per-case fields with ``_replace``).
+FrictionParams = namedtuple("FrictionParams", [
+    "eta0",         # MPa s, ambient-pressure viscosity at the oil temperature (per case)
+    "alpha",        # 1/MPa, Barus pressure-viscosity coefficient
+    "Z",            # 1, Roelands pressure-viscosity index at the oil temperature (per case)
+    "pv_model",     # int, pressure-viscosity law: sim.physics.ehl.PV_BARUS or PV_ROELANDS
+    "beta",         # 1/K, temperature-viscosity coefficient at the oil temperature (per case)
+    "traction_law", # int, film traction law: TRACTION_EYRING or TRACTION_NEWTON_LIMITED (module constants)
+    "tau_E",        # MPa, Eyring stress tau_E0 of the Maxwell-Eyring law (sim.physics.ehl.traction_eyring)
+    "tau0",         # MPa, limiting shear stress at zero pressure
+    "c_tau",        # 1, pressure coefficient of the limiting shear stress
+    "G",            # MPa, elastic shear modulus of the film (Maxwell traction)
+    "mu_s",         # 1, solid (asperity) friction coefficient
+    "v_s",          # mm/s, slip at which the solid friction is developed (tanh regularisation)
+    "hysteresis",   # 1, elastic hysteresis loss factor of the steel
+    "mu_cage",      # 1, roller / cage pocket friction coefficient
+    "sigma",        # mm, composite roughness of the raceway contacts
+    "B_ZH",         # 1, Zhou-Hoeprich load-share coefficient of the raceway contacts, thesis (5.16)
+    "C_ZH",         # 1, Zhou-Hoeprich load-share exponent of the raceway contacts
+    "sigma_rib",    # mm, composite roughness of the roller-end / rib contact (TRB; 0 for a TSRB)
+    "B_ZH_rib",     # 1, B_ZH of the roller-end / rib contact
+    "C_ZH_rib",     # 1, C_ZH of the roller-end / rib contact
+    "film",         # int, film-thickness formula: sim.physics.ehl.FILM_PAN_HAMROCK or FILM_DOWSON_HIGGINSON
+    "drag_k",       # N s^2 (= t mm), drag force on a roller over omega_c^2 (per case: oil density; 0 no drag)
+    "thermal",      # bool, shear heating lowers the film viscosity in the traction
+    "k_oil",        # W/(m K), thermal conductivity of the oil
+    "k_steel",      # W/(m K), thermal conductivity of the steel (flash temperature)
+    "kappa_steel",  # mm^2/s, thermal diffusivity of the steel
+    "dT_tol",       # K, tolerance of the film temperature solve
+    "inlet_heating",  # bool, inlet shear heating thins the film and the rolling loss (Gupta et al. 1992)
+])
+
+# Film traction laws (config friction.traction_law): the Maxwell-Eyring film limited by tau_L
+# (sim.physics.ehl.traction_eyring, the default) or the earlier Newtonian/Maxwell film limited
+# by tau_L (sim.physics.ehl.traction_per_speed).
+TRACTION_EYRING = 0
+TRACTION_NEWTON_LIMITED = 1
+TRACTION_LAWS = {"eyring": TRACTION_EYRING, "newton_limited": TRACTION_NEWTON_LIMITED}
+
+
+@kernel
+def _traction(par, p, v, h, phi, eta_p, t_transit):
+    """Traction stress over sliding speed tau/|v| [MPa s/mm] of the configured film law, thesis (5.17)."""
+    if par.traction_law == TRACTION_EYRING:
+        return traction_eyring(p, v, h, phi, eta_p, par.tau_E, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G,
+                               t_transit)
+    return traction_per_speed(p, v, h, phi, eta_p, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G, t_transit)
+
+
+# The solved bearing as the friction kernels read it (numba-supported named tuple).
+BearingArrays = namedtuple("BearingArrays", [
+    "q",            # (Z, 2, N) line loads [N/mm], race 0 outer, 1 inner
+    "Qrib",         # (Z,) roller-end / rib loads [N]
+    "R_eq",         # (2, N) radii of relative curvature [mm]
+    "w",            # slice width [mm]
+    "E_star",       # contact modulus [MPa]
+    "R_end",        # roller-end sphere radius [mm] (TRB; geometry arrays ``rib[2]``)
+    "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
+])
+
+# Film, load share, rolling resistance, Hertz data and film viscosity of every contact, written by
+# :func:`lubrication_state` and fixed while the kinematics are solved (0 where unloaded).
+FilmState = namedtuple("FilmState", [
+    "h",            # (Z, 2, N) film thickness [mm]
+    "Phi",          # (Z, 2, N) solid load share [1]
+    "Fh",           # (Z, 2, N) hydrodynamic rolling force of both surfaces together [N] (couple Fh R_eq)
+    "Fy",           # (Z, 2, N) hysteresis rolling force [N]
+    "p0",           # (Z, 2, N) Hertz pressure [MPa]
+    "b",            # (Z, 2, N) Hertz half-width [mm]
+    "Eta",          # (Z, 2, N, len(tq)) film viscosity at the pressure of each width point [MPa s]
+    "hrib",         # (Z,) rib film [mm]
+    "Phirib",       # (Z,) rib solid load share [1]
+    "prib",         # (Z,) rib Hertz mean pressure [MPa]
+    "Etarib",       # (Z,) rib film viscosity at that pressure [MPa s]
+])
+
+# Gauss-Legendre rule across a contact's width: nodes tq in (0, pi/2) of y = b sin(t) and weights wq.
+WidthQuadrature = namedtuple("WidthQuadrature", ["tq", "wq"])
+
+# Everything the friction of a roller depends on besides the speeds: ContactFrames
+# (sim.physics.roller_contact), BearingArrays, FilmState, FrictionParams, WidthQuadrature.
+FrictionCase = namedtuple("FrictionCase", ["frames", "bearing", "film", "par", "quad"])
+
+# Floor of the entrainment speed u [mm/s] in the transit time 2 b / u: zero entrainment gives an
+# effectively infinite transit time (a purely viscous film) instead of a division by zero.
+MIN_ENTRAINMENT_SPEED = 1e-300
+# Transit time [s] taken as infinite: no Maxwell relaxation term (the heat estimate of
+# :func:`_heat_flux` leaves it out; it only matters at micro-slip, where the heat is negligible).
+NO_RELAXATION = 1e300
+# Illinois steps of the film temperature solve: Illinois converges superlinearly (order 1.44,
+# Dowell & Jarratt 1971), so this only stops a pathological case (then the last iterate is used).
+FILM_TEMPERATURE_MAX_STEPS = 100
 
 
 @kernel
 def _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz):
-    """Speeds along e_t of the roller surface and of the ring surface at (Xr, Xz) [mm/s]."""
+    """Speeds along e_t of the roller surface and of the ring surface at (Xr, Xz) [mm/s].
+
+    wR: roller speed about its axis (ur, uz) through the centre (cr, cz); Om: ring speed in
+    the cage frame [rad/s]; lengths [mm].
+    """
     return wR * (uz * (Xr - cr) - ur * (Xz - cz)), Om * Xr
 
 
 @kernel
-def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, tq, wq):
+def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, quad):
     """Mean frictional heat flux of a contact [N/(mm s)]: (lubricant film, total).
 
     Line slice (bk > 0): traction (5.17) at the Hertz pressure p0 cos(t) and the sliding speed
@@ -81,7 +179,8 @@ def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, tq, wq):
     point contact (bk = 0, the rib): at the mean pressure p0k and the speed |st|. ``theta``
     scales the ambient viscosity (thermal reduction).
     """
-    eta = par[PAR_ETA0] * theta
+    tq, wq = quad.tq, quad.wq
+    eta = par.eta0 * theta
     q_tot = 0.0
     q_sol = 0.0
     npts = tq.shape[0] if bk > 0.0 else 1
@@ -96,16 +195,15 @@ def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, tq, wq):
             p = p0k
             v = abs(st)
             weight = 1.0
-        eta_p = pressure_viscosity(p, eta, par[PAR_ALPHA], par[PAR_Z], int(par[PAR_PV_MODEL]))
-        g = traction_per_speed(p, v, hk, phik, eta_p, par[PAR_TAU0], par[PAR_CTAU], par[PAR_MU_S], par[PAR_V_S],
-                               par[PAR_G], 1e300)
+        eta_p = pressure_viscosity(p, eta, par.alpha, par.Z, par.pv_model)
+        g = _traction(par, p, v, hk, phik, eta_p, NO_RELAXATION)
         q_tot += weight * g * v * v
-        q_sol += weight * phik * par[PAR_MU_S] * p * v * np.tanh(v / par[PAR_V_S])
+        q_sol += weight * phik * par.mu_s * p * v * np.tanh(v / par.v_s)
     return q_tot - q_sol, q_tot
 
 
 @kernel
-def _viscosity_factor(p0k, bk, hk, phik, st, ws, half_length, U1, U2, par, tq, wq):
+def _viscosity_factor(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad):
     """Thermal reduction of the film viscosity in the traction, theta = exp(-beta dT) [1].
 
     dT is the film temperature of the contact's own shear heating: the flash temperature of the
@@ -113,74 +211,72 @@ def _viscosity_factor(p0k, bk, hk, phik, st, ws, half_length, U1, U2, par, tq, w
     (sim.physics.ehl.flash_temperature_rise, film_temperature_rise), with the viscosity at the raised
     temperature, eta0 exp(alpha p - beta dT) (Reynolds' exponential law, beta the local
     slope of the lubricant's Ubbelohde-Walther line). Heating falls as dT rises, so
-    f(dT) = dT - rise(q(theta(dT))) has one root in [0, rise(q(1))], found by Illinois
-    steps to par[PAR_DT_TOL] K. The maximum traction (limiting shear) is not reduced; the
-    Maxwell transit-time term is left out of the heat estimate (it only matters at
-    microslip, where the heat is negligible).
+    f(dT) = rise(q(theta(dT))) - dT falls and has one root in [0, rise(q(1))], found by
+    :func:`sim._math.roots.root_search_step` to par.dT_tol K. The maximum traction (limiting
+    shear) is not reduced; the Maxwell transit-time term is left out of the heat estimate (it
+    only matters at microslip, where the heat is negligible).
+
+    Parameters
+    ----------
+    p0k : float
+        Hertz pressure (line slice) or mean pressure (point contact) [MPa].
+    bk : float
+        Hertz half-width of a line slice [mm]; 0 for the point contact of the rib.
+    hk, phik : float
+        Film [mm] and solid load share [1].
+    ws : float
+        Spin about the contact normal [rad/s].
+    half_length : float
+        Half length of the contact along the rolling direction [mm].
+    U1, U2 : float
+        Surface speeds of roller and ring [mm/s]; sliding speed U1 - U2.
     """
-    if par[PAR_THERMAL] == 0.0 or hk <= 0.0:
+    if not par.thermal or hk <= 0.0:
         return 1.0
-    beta = par[PAR_BETA]
-    tol = par[PAR_DT_TOL]
+    beta = par.beta
+    tol = par.dT_tol
+    st = U1 - U2
 
     def rise(dT):
-        q_film, q_tot = _heat_flux(np.exp(-beta * dT), p0k, bk, hk, phik, st, ws, par, tq, wq)
-        return (film_temperature_rise(q_film, hk, par[PAR_K_OIL])
-                + flash_temperature_rise(q_tot, half_length, U1, U2, par[PAR_K_STEEL], par[PAR_KAPPA_STEEL]))
+        q_film, q_tot = _heat_flux(np.exp(-beta * dT), p0k, bk, hk, phik, st, ws, par, quad)
+        return (film_temperature_rise(q_film, hk, par.k_oil)
+                + flash_temperature_rise(q_tot, half_length, U1, U2, par.k_steel, par.kappa_steel))
 
     hi = rise(0.0)
     if hi <= tol:
         return np.exp(-beta * hi)
-    lo = 0.0
-    flo = -hi
-    fhi = hi - rise(hi)
-    if abs(fhi) <= tol:      # heat independent of the viscosity: the film is at its limiting shear stress
-        return np.exp(-beta * hi)
-    side = 0
-    for _ in range(100):
-        if fhi - flo <= 0.0 or hi - lo <= tol:
-            break
-        x = (lo * fhi - hi * flo) / (fhi - flo)
-        fx = x - rise(x)
-        if abs(fx) <= tol:
-            lo = x
-            hi = x
-            break
-        lo, hi, flo, fhi, side = illinois(lo, hi, flo, fhi, x, fx, side)
-    return np.exp(-beta * 0.5 * (lo + hi))
+    search = root_search(0.0, hi, hi, tol)           # f(0) = rise(0) - 0
+    while not search.done:
+        search = root_search_step(search, rise(search.x) - search.x, tol, tol, FILM_TEMPERATURE_MAX_STEPS)
+    return np.exp(-beta * search.x)
 
 
 @kernel
-def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, w, E_star, rib, par, tq, wq,
-                      h, Phi, Fh, Fy, p0, b, hrib, Phirib, prib, Eta, Etarib):
+def lubrication_state(wR, wc, wi, active, case):
     """Film, solid load share, rolling resistance forces, Hertz data and thermal viscosity factor
-    of every loaded contact, at the speeds wR, wc.
+    of every loaded contact, at the speeds wR, wc: writes ``case.film``.
 
     Parameters
     ----------
     wR : ndarray (Z,)
-        Roller speeds about u' [rad/s]. wc, wi: cage and inner-ring speeds [rad/s].
+        Roller speeds about u' [rad/s].
+    wc, wi : float
+        Cage and inner-ring speeds [rad/s].
     active : ndarray (Z,) of bool
-        Rollers to evaluate; the others' arrays are left as they are (the caller never reads them).
-    q : ndarray (Z, 2, N)
-        Line loads [N/mm]. Qrib (Z,): rib loads [N].
-    R_eq : ndarray (2, N)
-        Radii of relative curvature [mm]. w: slice width [mm]. E_star: contact modulus [MPa].
-    par : ndarray (NPAR,)
-        Friction parameters (module constants PAR_*). tq, wq: width quadrature nodes and weights.
-    h, Phi, Fh, Fy, p0, b : ndarray (Z, 2, N)
-        Film [mm], solid load share [1], hydrodynamic and hysteresis rolling forces [N],
-        Hertz pressure [MPa] and half-width [mm] (written; 0 where unloaded).
-    Eta : ndarray (Z, 2, N, len(tq))
-        Film viscosity at the pressure p0 cos(tq) of each width point, after the thermal
-        reduction [MPa s] (written where loaded): fixed while the kinematics are solved.
-    hrib, Phirib, prib, Etarib : ndarray (Z,)
-        Rib film [mm], load share [1], Hertz mean pressure [MPa] and film viscosity at that
-        pressure [MPa s] (written).
+        Rollers to evaluate; the others' film is left as it is (the caller never reads it).
+    case : FrictionCase
+        Frames, bearing arrays and parameters are read; ``case.film`` (:data:`FilmState`) is
+        written: film viscosity ``Eta`` at the pressure p0 cos(tq) of each width point after the
+        thermal reduction, fixed while the kinematics are solved.
     """
+    X, Nrm, Cen, Ax, Xrib = case.frames
+    brg, film, par, quad = case.bearing, case.film, case.par, case.quad
+    q, Qrib, R_eq, w, E_star = brg.q, brg.Qrib, brg.R_eq, brg.w, brg.E_star
+    h, Phi, Fh, Fy, p0, b, Eta = film.h, film.Phi, film.Fh, film.Fy, film.p0, film.b, film.Eta
+    tq = quad.tq
     Z = q.shape[0]
     n = q.shape[2]
-    Ep = par[PAR_EPRIME]
+    Ep = 2.0 * E_star                  # E' of the EHL film formulas [MPa]
     for j in range(Z):
         if not active[j]:
             continue
@@ -203,53 +299,80 @@ def lubrication_state(wR, wc, wi, active, q, Qrib, X, Nrm, Cen, Ax, Xrib, R_eq, 
                 v1, v2 = _surface_speeds(wR[j], Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
                 u = 0.5 * abs(v1 + v2)
                 R = R_eq[s, k]
-                hk = film_line(u, qk, R, par[PAR_ETA0], par[PAR_ALPHA], Ep, int(par[PAR_FILM]))
-                h[j, s, k] = hk
-                Phi[j, s, k] = solid_load_share(hk, par[PAR_SIGMA], par[PAR_B], par[PAR_C])
-                Fh[j, s, k] = rolling_force_hydrodynamic(u, qk, R, w, par[PAR_ETA0], par[PAR_ALPHA], Ep)
                 bk = hertz_line_half_width(qk, R, E_star)
                 b[j, s, k] = bk
                 p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
-                Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par[PAR_HYST])
+                # inlet shear heating thins the film and lowers the Poiseuille rolling force alike
+                # (Zhou & Hoeprich 1991 eq. 22, factor of Gupta et al. 1992)
+                phi_T = 1.0
+                if par.inlet_heating and u > 0.0:
+                    phi_T = film_thermal_factor_gupta(p0[j, s, k], Ep, thermal_loading(par.eta0, par.beta, u, par.k_oil),
+                                                      (v1 - v2) / u)
+                hk = phi_T * film_line(u, qk, R, par.eta0, par.alpha, Ep, par.film)
+                h[j, s, k] = hk
+                Phi[j, s, k] = solid_load_share(hk, par.sigma, par.B_ZH, par.C_ZH)
+                # the film retards both surfaces by F each (Reynolds: dissipation 2 u F, couple
+                # 2 F R, sim.physics.ehl.rolling_moment_hydrodynamic): Fh is the sum of both
+                Fh[j, s, k] = phi_T * rolling_moment_hydrodynamic(u, qk, R, w, par.eta0, par.alpha, Ep) / R
+                Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
                 ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
-                theta = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], v1 - v2, ws, bk, v1, v2, par, tq, wq)
+                theta = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, par, quad)
                 for i in range(tq.shape[0]):
-                    Eta[j, s, k, i] = pressure_viscosity(p0[j, s, k] * np.cos(tq[i]), par[PAR_ETA0] * theta,
-                                                         par[PAR_ALPHA], par[PAR_Z], int(par[PAR_PV_MODEL]))
-        hrib[j] = 0.0
-        Phirib[j] = 0.0
-        prib[j] = 0.0
-        Etarib[j] = 0.0
+                    Eta[j, s, k, i] = pressure_viscosity(p0[j, s, k] * np.cos(tq[i]), par.eta0 * theta,
+                                                         par.alpha, par.Z, par.pv_model)
+        film.hrib[j] = 0.0
+        film.Phirib[j] = 0.0
+        film.prib[j] = 0.0
+        film.Etarib[j] = 0.0
         if Qrib[j] > 0.0:
             v1, v2 = _surface_speeds(wR[j], wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
             u = 0.5 * abs(v1 + v2)
-            R_end = rib[2]
+            R_end = brg.R_end
             # sphere on a locally flat rib: circular Hertz contact, a = (3 Q R / (4 E*))^(1/3) (Johnson 4.22)
             a = (3.0 * Qrib[j] * R_end / (4.0 * E_star)) ** (1.0 / 3.0)
-            prib[j] = Qrib[j] / (np.pi * a * a)
-            hrib[j] = film_point(u, Qrib[j], R_end, R_end, par[PAR_ETA0], par[PAR_ALPHA], Ep)
-            Phirib[j] = solid_load_share(hrib[j], par[PAR_SIGMA_RIB], par[PAR_B_RIB], par[PAR_C_RIB])
-            theta = _viscosity_factor(prib[j], 0.0, hrib[j], Phirib[j], v1 - v2, 0.0, a, v1, v2, par, tq, wq)
-            Etarib[j] = pressure_viscosity(prib[j], par[PAR_ETA0] * theta, par[PAR_ALPHA], par[PAR_Z],
-                                           int(par[PAR_PV_MODEL]))
+            prib = Qrib[j] / (np.pi * a * a)
+            hrib = film_point(u, Qrib[j], R_end, R_end, par.eta0, par.alpha, Ep)
+            Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
+            theta = _viscosity_factor(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2, par, quad)
+            film.prib[j] = prib
+            film.hrib[j] = hrib
+            film.Phirib[j] = Phirib
+            film.Etarib[j] = pressure_viscosity(prib, par.eta0 * theta, par.alpha, par.Z, par.pv_model)
 
 
 @kernel
-def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, eta, Frr, Req, w, par, tq, wq, ev,
-                    outer):
-    """Add one slice's friction to the roller evaluation vector ``ev`` (module docstring).
+def _slice_friction(j, s, k, wR, Om, case, ev):
+    """Add the friction of slice k of race s (0 outer, 1 inner) of roller j to the roller
+    evaluation vector ``ev`` (module docstring), at roller speed wR and ring speed Om in the
+    cage frame [rad/s].
 
-    ``eta`` (len(tq),): film viscosity at the pressure of each width point [MPa s]. Returns the
-    tangential force F_t [N], the sliding speed s [mm/s] and the rolling-resistance power
-    [N mm/s]; the caller splits -F_t s into sliding and drilling.
+    Returns the tangential force F_t [N], the sliding speed s [mm/s] and the rolling-resistance
+    power [N mm/s]; the caller splits -F_t s into sliding and drilling.
     """
+    X, Nrm, Cen, Ax = case.frames.X, case.frames.Nrm, case.frames.Cen, case.frames.Ax
+    film, par, quad = case.film, case.par, case.quad
+    tq, wq = quad.tq, quad.wq
+    Xr = X[j, s, k, 0]
+    Xz = X[j, s, k, 1]
+    nr = Nrm[j, s, k, 0]
+    nz = Nrm[j, s, k, 1]
+    cr = Cen[j, 0]
+    cz = Cen[j, 1]
+    ur = Ax[j, 0]
+    uz = Ax[j, 1]
+    p0k = film.p0[j, s, k]
+    bk = film.b[j, s, k]
+    hk = film.h[j, s, k]
+    phik = film.Phi[j, s, k]
+    eta = film.Eta[j, s, k]                                  # (len(tq),) [MPa s]
+    w = case.bearing.w
     v1, v2 = _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz)
     st = v1 - v2
     ws = wR * (ur * nr + uz * nz) - Om * nz                 # spin about n
     ar = -nz                                                 # a = n x e_t in (r, z)
     az = nr
     wroll = wR * (ur * ar + uz * az) - Om * az               # relative rolling about a
-    t_transit = 2.0 * bk / max(0.5 * abs(v1 + v2), 1e-300)   # [s]; entrainment 0 -> purely viscous
+    t_transit = 2.0 * bk / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)   # [s]
     # width integral, y = b sin(t), t in (0, pi/2), both halves (|v| is even in y)
     Ft = 0.0
     Mn = 0.0
@@ -259,34 +382,37 @@ def _slice_friction(wR, Om, Xr, Xz, nr, nz, cr, cz, ur, uz, p0k, bk, hk, phik, e
         p = p0k * ct
         vy = y * ws
         v = np.sqrt(st * st + vy * vy)
-        g = traction_per_speed(p, v, hk, phik, eta[i], par[PAR_TAU0], par[PAR_CTAU], par[PAR_MU_S], par[PAR_V_S],
-                               par[PAR_G], t_transit)
+        g = _traction(par, p, v, hk, phik, eta[i], t_transit)
         dA = 2.0 * w * bk * ct * wq[i]
         Ft -= g * st * dA
         Mn -= g * y * vy * dA
-    Mrr = Frr * Req
+    Mrr = (film.Fh[j, s, k] + film.Fy[j, s, k]) * case.bearing.R_eq[s, k]
     sg = 1.0 if wroll > 0.0 else -1.0
     dr = Xr - cr
     dz = Xz - cz
     ev[EV_MU] += Ft * (uz * dr - ur * dz) + Mn * (ur * nr + uz * nz) - sg * Mrr * (ur * ar + uz * az)
     tz = Ft * Xr + Mn * nz - sg * Mrr * az                   # z-moment on the roller
     ev[EV_TZ] += tz
-    if outer:
+    if s == 0:
         ev[EV_TOUT] -= tz                                    # reaction on the outer ring
     ev[EV_FT] += Ft
-    ev[EV_P0 + 3] -= Mn * ws                                 # spin power (drilling)
+    ev[EV_DRILLING] -= Mn * ws                               # spin power
     return Ft, st, Mrr * abs(wroll)                          # [N], [mm/s], rolling-resistance power [N mm/s]
 
 
 @kernel
-def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, Eta, Etarib, par, tq, wq, ev):
-    """Friction of roller j at roller speed wR and cage speed wc [rad/s]: fills ``ev`` (NEV,).
+def roller_friction(j, wR, wc, wi, case, ev):
+    """Friction of roller j at roller speed wR and cage speed wc [rad/s], inner-ring speed wi
+    [rad/s], film and frames of ``case`` (:data:`FrictionCase`): fills ``ev`` (NEV,).
 
     ev: moment about the roller axis [N mm], z-moment of the contacts on the roller [N mm],
     z-moment on the outer ring [N mm], tangential contact force [N], then the powers [N mm/s]
     of COMPONENTS.
     """
+    Xrib, Cen, Ax = case.frames.Xrib, case.frames.Cen, case.frames.Ax
+    film, par = case.film, case.par
+    p0, b, Fh, Fy = film.p0, film.b, film.Fh, film.Fy
+    Qrib = case.bearing.Qrib
     for i in range(NEV):
         ev[i] = 0.0
     cr = Cen[j, 0]
@@ -304,41 +430,38 @@ def roller_friction(j, wR, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, F
             if p0[j, s, k] <= 0.0:
                 continue
             frr = Fh[j, s, k] + Fy[j, s, k]
-            Ft, st, prr = _slice_friction(wR, Om, X[j, s, k, 0], X[j, s, k, 1], Nrm[j, s, k, 0], Nrm[j, s, k, 1],
-                                          cr, cz, ur, uz, p0[j, s, k], b[j, s, k], h[j, s, k], Phi[j, s, k],
-                                          Eta[j, s, k], frr,
-                                          R_eq[s, k], w, par, tq, wq, ev, s == 0)
+            Ft, st, prr = _slice_friction(j, s, k, wR, Om, case, ev)
             F_sum += Ft
             P_slip -= Ft * st
             qk = p0[j, s, k] * b[j, s, k]
             qs_sum += qk * st
             q_sum += qk
             if frr > 0.0:
-                ev[EV_P0 + 0] += prr * Fh[j, s, k] / frr
-                ev[EV_P0 + 1] += prr * Fy[j, s, k] / frr
+                ev[EV_ROLLING] += prr * Fh[j, s, k] / frr
+                ev[EV_HYSTERESIS] += prr * Fy[j, s, k] / frr
         if q_sum > 0.0:
             P_rigid = -F_sum * qs_sum / q_sum
-            ev[EV_P0 + 2] += P_rigid
-            ev[EV_P0 + 3] += P_slip - P_rigid
+            ev[EV_SLIDING] += P_rigid
+            ev[EV_DRILLING] += P_slip - P_rigid
     if Qrib[j] > 0.0:
+        prib = film.prib[j]
         v1, v2 = _surface_speeds(wR, wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
         st = v1 - v2
-        a_rib = np.sqrt(Qrib[j] / (np.pi * prib[j]))               # Hertz radius [mm]
-        t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), 1e-300)
-        g = traction_per_speed(prib[j], abs(st), hrib[j], Phirib[j], Etarib[j], par[PAR_TAU0], par[PAR_CTAU],
-                               par[PAR_MU_S], par[PAR_V_S], par[PAR_G], t_transit)
-        F = -g * st * Qrib[j] / prib[j]
+        a_rib = np.sqrt(Qrib[j] / (np.pi * prib))                  # Hertz radius [mm]
+        t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)
+        g = _traction(par, prib, abs(st), film.hrib[j], film.Phirib[j], film.Etarib[j], t_transit)
+        F = -g * st * Qrib[j] / prib
         ev[EV_MU] += F * (uz * (Xrib[j, 0] - cr) - ur * (Xrib[j, 1] - cz))
         ev[EV_TZ] += F * Xrib[j, 0]
         ev[EV_FT] += F
-        ev[EV_P0 + 4] -= F * st
+        ev[EV_RIB] -= F * st
     # drag on the roller (reacted by the housing = outer ring) and the cage pocket force
-    FD = par[PAR_DRAG_K] * wc * wc
+    FD = par.drag_k * wc * wc
     rc = cr
     ev[EV_TZ] -= FD * rc
     ev[EV_TOUT] += FD * rc
-    ev[EV_P0 + 6] += FD * wc * rc
+    ev[EV_DRAG] += FD * wc * rc
     Fcage = FD - ev[EV_FT]
-    Pc = par[PAR_MU_CAGE] * abs(Fcage) * par[PAR_RHO_M]
+    Pc = par.mu_cage * abs(Fcage) * case.bearing.rho_m
     ev[EV_MU] -= Pc if wR > 0.0 else -Pc
-    ev[EV_P0 + 5] += Pc * abs(wR)
+    ev[EV_CAGE] += Pc * abs(wR)

@@ -7,56 +7,63 @@ moment about z = 0: sum over rollers of the z-moments the contacts exert).
 eliminated); :func:`solve_kinematics` brackets the cage speed, each roller at its own balance
 (slower, but it cannot leave the bracket).
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim._math.jit import kernel
-from sim._math.roots import illinois, widen
+from sim._math.roots import root_search, root_search_step
 from sim.physics.friction import EV_MU, EV_TZ, NEV, roller_friction
 
+# How the kinematics are solved (numba-supported named tuple, built by sim.api.friction_model):
+KinematicsSettings = namedtuple("KinematicsSettings", [
+    "active",       # (Z,) bool: rollers that carry load (the others keep rolling speeds and add nothing)
+    "weight",       # (Z,) multiplicity of each solved roller (Z for the one roller of a symmetric case, else 1)
+    "tol_M",        # N mm, absolute tolerance of each roller's moment balance about its axis
+    "tol_T",        # N mm, absolute tolerance of the cage's z-moment balance
+    "max_iter",     # int: bracket widenings, regula falsi or Newton steps before giving up
+])
+
+# First bracket of a roller speed: +-10 % of the start value (rolling kinematics (2.22) or the
+# previous solution). Measured: the traction roller speeds lie within 0.1 % of rolling kinematics
+# for the TRB 32208 and 2-7 % above it for the crowned TSRBs (reference, prototype tilted 0.25
+# deg, pinion), so the first bracket holds the root; otherwise it is widened.
+ROLLER_BRACKET = (0.9, 1.1)
+# First bracket of the cage speed: +-5 % of the start value (2.20). Measured: the cage runs within
+# 0.7 % of rolling kinematics in the same cases; every cage-moment evaluation solves all roller
+# speeds, so a tight bracket saves widening steps without risking a miss.
+CAGE_BRACKET = (0.95, 1.05)
+# Relative step of the forward-difference Jacobian: near the square root of the double precision
+# (1.5e-8), where truncation and rounding error of a forward difference balance (Dennis &
+# Schnabel 1983, 5.4); conf/friction/default.yaml (friction.tolerance) refers to it.
+FD_STEP = 1e-7
+# Backtracking halvings before a Newton step is rejected: down to 2^-30 ~ 1e-9 of the step, a
+# length at which the speeds change far less than the difference step FD_STEP resolves; a
+# direction that lowers the residual norm nowhere up to there is no descent direction, and the
+# caller falls back to the bracketing solve.
+MAX_HALVINGS = 30
+
 
 @kernel
-def _solve_roller_speed(j, w0, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter):
-    """omega_R of roller j with zero moment about its axis (bracketing + Illinois regula falsi).
+def _solve_roller_speed(j, w0, wc, wi, case, ev, tol_M, max_iter):
+    """omega_R of roller j with zero moment about its axis (bracketed root, sim._math.roots).
 
-    Returns (omega_R [rad/s], converged). M(omega_R) falls with omega_R: more spin, more drag.
+    Returns (omega_R [rad/s], converged); w0 when no bracket is found. M(omega_R) falls with
+    omega_R: more spin, more drag.
     """
-    lo = 0.9 * w0
-    hi = 1.1 * w0
-    roller_friction(j, lo, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, Eta, Etarib, par, tq, wq, ev)
-    flo = ev[EV_MU]
-    roller_friction(j, hi, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                    Phirib, Eta, Etarib, par, tq, wq, ev)
-    fhi = ev[EV_MU]
-    for grow in range(max_iter):
-        if flo * fhi <= 0.0:
-            break
-        lo, hi, flo, fhi, x, x_is_hi = widen(lo, hi, flo, fhi)
-        roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Eta, Etarib, par, tq, wq, ev)
-        if x_is_hi:
-            fhi = ev[EV_MU]
-        else:
-            flo = ev[EV_MU]
-    if flo * fhi > 0.0:
+    lo = ROLLER_BRACKET[0] * w0
+    roller_friction(j, lo, wc, wi, case, ev)
+    search = root_search(lo, ev[EV_MU], ROLLER_BRACKET[1] * w0, tol_M)
+    while not search.done:
+        roller_friction(j, search.x, wc, wi, case, ev)
+        search = root_search_step(search, ev[EV_MU], tol_M, 0.0, max_iter)
+    if not search.bracketed:
         return w0, False
-    side = 0
-    x = lo
-    for it in range(max_iter):
-        x = hi - fhi * (hi - lo) / (fhi - flo)
-        roller_friction(j, x, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Eta, Etarib, par, tq, wq, ev)
-        fx = ev[EV_MU]
-        if abs(fx) <= tol_M:
-            return x, True
-        lo, hi, flo, fhi, side = illinois(lo, hi, flo, fhi, x, fx, side)
-    return x, False
+    return search.x, search.converged
 
 
 @kernel
-def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib,
-                 hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals):
+def _cage_moment(wc, wi, wR, case, settings, ev, totals):
     """Sum of the z-moments on all rollers at cage speed wc, each roller at its own moment balance.
 
     wR (Z,) holds start values in and solved speeds out; ``totals`` (NEV,) gets the weighted
@@ -66,107 +73,82 @@ def _cage_moment(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b,
     for i in range(NEV):
         totals[i] = 0.0
     for j in range(wR.shape[0]):
-        if not active[j]:
+        if not settings.active[j]:
             continue
-        wj, conv = _solve_roller_speed(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                       R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter)
+        wj, conv = _solve_roller_speed(j, wR[j], wc, wi, case, ev, settings.tol_M, settings.max_iter)
         ok = ok and conv
         wR[j] = wj
-        roller_friction(j, wj, wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Eta, Etarib, par, tq, wq, ev)
+        roller_friction(j, wj, wc, wi, case, ev)
         for i in range(NEV):
-            totals[i] += weight[j] * ev[i]
+            totals[i] += settings.weight[j] * ev[i]
     return totals[EV_TZ], ok
 
 
 @kernel
-def solve_kinematics(wc0, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                     prib, hrib, Phirib, Eta, Etarib, par, tq, wq, tol_M, tol_T, max_iter, totals):
+def solve_kinematics(wc0, wi, wR, case, settings, totals):
     """Cage speed with zero z-moment on the cage and roller speeds with zero spin moment.
 
     Parameters
     ----------
     wc0 : float
-        Start value, the rolling cage speed (2.20) [rad/s]. wi: inner-ring speed [rad/s].
+        Start value, the rolling cage speed (2.20) [rad/s].
+    wi : float
+        Inner-ring speed [rad/s].
     wR : ndarray (Z,)
         Roller speeds [rad/s]: start values in, solution out.
-    active : ndarray (Z,) bool
-        Rollers that carry load (the others keep rolling speeds and add nothing).
-    weight : ndarray (Z,)
-        Multiplicity of each solved roller (Z for the one roller of a symmetric case, else 1).
-    tol_M, tol_T : float
-        Absolute tolerances of the roller and cage moment balances [N mm].
+    case : sim.physics.friction.FrictionCase
+        Frames, bearing arrays, film state, parameters and width quadrature.
+    settings : KinematicsSettings
+        Rollers solved, their multiplicity, tolerances and iteration limit.
     totals : ndarray (NEV,)
         Bearing sums of the roller evaluation vectors at the solution (written).
 
     Returns
     -------
-    (omega_c [rad/s], converged)
+    (omega_c [rad/s], converged); wc0 when no bracket is found.
     """
     ev = np.empty(NEV)
-    lo = 0.95 * wc0
-    hi = 1.05 * wc0
-    flo, ok = _cage_moment(lo, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                            w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
-    fhi, ok = _cage_moment(hi, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                            w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
-    for grow in range(max_iter):
-        if flo * fhi <= 0.0:
-            break
-        lo, hi, flo, fhi, x, x_is_hi = widen(lo, hi, flo, fhi)
-        fx, ok = _cage_moment(x, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                              w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
-        if x_is_hi:
-            fhi = fx
-        else:
-            flo = fx
-    if flo * fhi > 0.0:
+    lo = CAGE_BRACKET[0] * wc0
+    flo, ok = _cage_moment(lo, wi, wR, case, settings, ev, totals)
+    search = root_search(lo, flo, CAGE_BRACKET[1] * wc0, settings.tol_T)
+    while not search.done:
+        fx, ok = _cage_moment(search.x, wi, wR, case, settings, ev, totals)
+        search = root_search_step(search, fx, settings.tol_T, 0.0, settings.max_iter)
+    if not search.bracketed:
         return wc0, False
-    side = 0
-    x = lo
-    for it in range(max_iter):
-        x = hi - fhi * (hi - lo) / (fhi - flo)
-        fx, ok = _cage_moment(x, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq,
-                              w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter, totals)
-        if abs(fx) <= tol_T:
-            return x, ok
-        lo, hi, flo, fhi, side = illinois(lo, hi, flo, fhi, x, fx, side)
-    return x, False
+    return search.x, search.converged and ok
 
 
 @kernel
-def _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                         prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M, T, totals):
+def _kinematic_residuals(wc, wi, wR, case, settings, ev, M, T, totals):
     """Roller spin moments M (Z,) and cage z-moments per roller T (Z,) [N mm] at (wR, wc); sums into totals."""
     for i in range(NEV):
         totals[i] = 0.0
     for j in range(wR.shape[0]):
         M[j] = 0.0
         T[j] = 0.0
-        if not active[j]:
+        if not settings.active[j]:
             continue
-        roller_friction(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w, prib, hrib,
-                        Phirib, Eta, Etarib, par, tq, wq, ev)
+        roller_friction(j, wR[j], wc, wi, case, ev)
         M[j] = ev[EV_MU]
-        T[j] = weight[j] * ev[EV_TZ]
+        T[j] = settings.weight[j] * ev[EV_TZ]
         for i in range(NEV):
-            totals[i] += weight[j] * ev[i]
+            totals[i] += settings.weight[j] * ev[i]
 
 
 @kernel
-def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh,
-                            Fy, R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, tol_M, tol_T, max_iter, totals):
+def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals):
     """Newton on all roller speeds and the cage speed together (arrow-shaped Jacobian).
 
     Roller j's spin moment depends on its own speed and the cage speed only, so the Jacobian
-    is a diagonal block plus one row and column; it is built by forward differences (step
-    1e-7 of the speed, a relative step near the square root of the double precision) and
-    eliminated in O(Z). Backtracking on the scaled residual norm keeps the iteration
-    monotone. Same arguments and return value as :func:`solve_kinematics`; wR and wc are
-    start values (rolling kinematics or a previous solution). ``presolve``: first bring every
+    is a diagonal block plus one row and column; it is built by forward differences (relative
+    step FD_STEP) and eliminated in O(Z). Backtracking on the scaled residual norm keeps the
+    iteration monotone. Same arguments and return value as :func:`solve_kinematics`; wR and wc
+    are start values (rolling kinematics or a previous solution). ``presolve``: first bring every
     roller to its own moment balance at the start cage speed (for a start far away, such as
     rolling kinematics of a crowned roller).
     """
+    active, weight, tol_M, tol_T = settings.active, settings.weight, settings.tol_M, settings.tol_T
     Z = wR.shape[0]
     ev = np.empty(NEV)
     M = np.zeros(Z)
@@ -183,11 +165,9 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
     # start: every roller at its own moment balance for the start cage speed (1-D, bracketed)
     for j in range(Z):
         if presolve and active[j]:
-            wR[j], conv = _solve_roller_speed(j, wR[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                                              R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, tol_M, max_iter)
-    _kinematic_residuals(wc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                         prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M, T, totals)
-    for it in range(max_iter):
+            wR[j] = _solve_roller_speed(j, wR[j], wc, wi, case, ev, tol_M, settings.max_iter)[0]
+    _kinematic_residuals(wc, wi, wR, case, settings, ev, M, T, totals)
+    for _ in range(settings.max_iter):
         norm = (T.sum() / tol_T) ** 2
         worst = abs(T.sum()) / tol_T
         for j in range(Z):
@@ -196,9 +176,8 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
         if worst <= 1.0:
             return wc, True
         # Jacobian by forward differences
-        hc = 1e-7 * abs(wc)
-        _kinematic_residuals(wc + hc, wi, wR, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy,
-                             R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M2, T2, tmp)
+        hc = FD_STEP * abs(wc)
+        _kinematic_residuals(wc + hc, wi, wR, case, settings, ev, M2, T2, tmp)
         for j in range(Z):
             dMdc[j] = (M2[j] - M[j]) / hc
             dTdc[j] = (T2[j] - T[j]) / hc
@@ -207,10 +186,9 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
         for j in range(Z):
             if not active[j]:
                 continue
-            hj = 1e-7 * abs(wR[j])
+            hj = FD_STEP * abs(wR[j])
             wtrial[j] = wR[j] + hj
-            roller_friction(j, wtrial[j], wc, wi, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h, Phi, Fh, Fy, R_eq, w,
-                            prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev)
+            roller_friction(j, wtrial[j], wc, wi, case, ev)
             wtrial[j] = wR[j]
             dMdw[j] = (ev[EV_MU] - M[j]) / hj
             dTdw[j] = (weight[j] * ev[EV_TZ] - T[j]) / hj
@@ -228,11 +206,10 @@ def solve_kinematics_newton(wc, presolve, wi, wR, active, weight, X, Nrm, Cen, A
             dw[j] = -(M[j] + dMdc[j] * dc) / dMdw[j] if active[j] and dMdw[j] != 0.0 else 0.0
         step = 1.0
         accepted = False
-        for ls in range(30):
+        for _ in range(MAX_HALVINGS):
             for j in range(Z):
                 wtrial[j] = wR[j] + step * dw[j]
-            _kinematic_residuals(wc + step * dc, wi, wtrial, active, weight, X, Nrm, Cen, Ax, Xrib, Qrib, p0, b, h,
-                                 Phi, Fh, Fy, R_eq, w, prib, hrib, Phirib, Eta, Etarib, par, tq, wq, ev, M2, T2, tmp)
+            _kinematic_residuals(wc + step * dc, wi, wtrial, case, settings, ev, M2, T2, tmp)
             trial = (T2.sum() / tol_T) ** 2
             for j in range(Z):
                 trial += (M2[j] / tol_M) ** 2

@@ -410,25 +410,13 @@ def test_temperature_viscosity_coefficient_is_the_slope_of_the_oil():
 
 
 def _thermal_par(beta, k_oil, k_s, kappa_s):
-    """Friction parameters of a Newtonian, Barus film: no limiting shear (c_tau = 1e6) and a
+    """Friction parameters of a Newtonian (traction law newton_limited), Barus film: no limiting shear (c_tau = 1e6) and a
     rigid film (G = 1e12 MPa), so the traction is eta(p) v / h exactly enough (relative error of
     tanh(x)/x below 1e-12 here)."""
-    par = np.zeros(friction.NPAR)
-    par[friction.PAR_ETA0] = 0.039e-6
-    par[friction.PAR_ALPHA] = 0.021
-    par[friction.PAR_PV_MODEL] = ehl.PV_BARUS
-    par[friction.PAR_TAU0] = 2.0
-    par[friction.PAR_CTAU] = 1e6
-    par[friction.PAR_G] = 1e12
-    par[friction.PAR_MU_S] = 0.1
-    par[friction.PAR_V_S] = 1.0
-    par[friction.PAR_THERMAL] = 1.0
-    par[friction.PAR_BETA] = beta
-    par[friction.PAR_K_OIL] = k_oil
-    par[friction.PAR_K_STEEL] = k_s
-    par[friction.PAR_KAPPA_STEEL] = kappa_s
-    par[friction.PAR_DT_TOL] = 1e-9
-    return par
+    par = friction.FrictionParams(**{name: 0.0 for name in friction.FrictionParams._fields})
+    return par._replace(traction_law=friction.TRACTION_NEWTON_LIMITED, eta0=0.039e-6, alpha=0.021, pv_model=ehl.PV_BARUS, tau0=2.0, c_tau=1e6, G=1e12, mu_s=0.1,
+                        v_s=1.0, film=ehl.FILM_PAN_HAMROCK, thermal=True, beta=beta, k_oil=k_oil, k_steel=k_s,
+                        kappa_steel=kappa_s, dT_tol=1e-9)
 
 
 @pytest.mark.parametrize("line", [False, True])
@@ -447,23 +435,23 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
     beta, k_oil, k_s, kappa_s = 0.046, 0.13, 46.6, 12.5         # 1/K, W/(m K), W/(m K), mm^2/s
     par = _thermal_par(beta, k_oil, k_s, kappa_s)
     p, h, v, half, U1, U2 = 330.0, 1.3e-3, 1160.0, 0.8, 2300.0, 3460.0   # MPa, mm, mm/s, mm, mm/s
+    assert abs(U1 - U2) == v                 # the sliding speed of the surfaces
     t, wt = np.polynomial.legendre.leggauss(16)
-    tq, wq = 0.25 * np.pi * (t + 1.0), 0.25 * np.pi * wt
-    eta0, alpha = par[friction.PAR_ETA0], par[friction.PAR_ALPHA]
+    rule = friction.WidthQuadrature(0.25 * np.pi * (t + 1.0), 0.25 * np.pi * wt)
+    eta0, alpha = par.eta0, par.alpha
     if line:
         # mean over y in (-b, b) = integral over t in (0, pi/2) of f(p0 cos t) cos t, y = b sin t
         A = quad(lambda s: eta0 * math.exp(alpha * p * math.cos(s)) * math.cos(s), 0.0, 0.5 * math.pi,
                  epsabs=0.0, epsrel=1e-13)[0] * v * v / h
-        theta = friction._viscosity_factor(p, half, h, 0.0, v, 0.0, half, U1, U2, par, tq, wq)
+        theta = friction._viscosity_factor(p, half, h, 0.0, 0.0, half, U1, U2, par, rule)
     else:
         A = eta0 * math.exp(alpha * p) * v * v / h
-        theta = friction._viscosity_factor(p, 0.0, h, 0.0, v, 0.0, half, U1, U2, par, tq, wq)
+        theta = friction._viscosity_factor(p, 0.0, h, 0.0, 0.0, half, U1, U2, par, rule)
     C = h / (8.0 * k_oil) + 4.0 / 3.0 * math.sqrt(2.0 * half * kappa_s / math.pi) / (k_s * (math.sqrt(U1) + math.sqrt(U2)))
     dT = lambertw(beta * C * A).real / beta
     assert 5.0 < dT < 200.0                  # a case where heating matters (rib of a TRB at 40 kN)
     assert -math.log(theta) / beta == pytest.approx(dT, rel=1e-7)
-    par[friction.PAR_THERMAL] = 0.0
-    assert friction._viscosity_factor(p, 0.0, h, 0.0, v, 0.0, half, U1, U2, par, tq, wq) == 1.0
+    assert friction._viscosity_factor(p, 0.0, h, 0.0, 0.0, half, U1, U2, par._replace(thermal=False), rule) == 1.0
 
 
 # ---------------------------------------------------------------------------------------------

@@ -108,12 +108,17 @@ def test_rib_friction_dominates_trb_at_low_lambda():
 
 
 @pytest.mark.parametrize("Fa,Fr", [(4000, 0), (4000, 4000)])
-def test_drilling_is_the_largest_raceway_loss_of_the_tsrb(Fa, Fr):
-    """Thesis 7.1-7.2: the crowned TSRB pays drilling friction for having no rib; at the
-    reference conditions it is the largest of its roller-raceway losses."""
-    case = run("tsrb_reference", f"load.Fa={Fa}", f"load.Fr={Fr}")
-    raceway = {c: share(case, c) for c in ("rolling", "hysteresis", "sliding", "drilling")}
+def test_drilling_is_the_largest_loss_of_the_prototype_and_sliding_the_smallest(Fa, Fr):
+    """Thesis 6.3 (Fig. 6.8 discussion): at the rig's moderate axial loads "the drilling friction
+    taking place at the prototype outweigh[s] the other types of friction"; thesis 7.1 (Fig. 7.2
+    discussion): the sliding friction of a TSRB "has in comparison less of an influence than the
+    rolling and the drilling friction" (prototype and reference geometry)."""
+    proto = run("tsrb_prototype", f"load.Fa={Fa}", f"load.Fr={Fr}")
+    raceway = {c: share(proto, c) for c in ("rolling", "hysteresis", "sliding", "drilling")}
     assert max(raceway, key=raceway.get) == "drilling"
+    for bearing in ("tsrb_prototype", "tsrb_reference"):
+        case = proto if bearing == "tsrb_prototype" else run(bearing, f"load.Fa={Fa}", f"load.Fr={Fr}")
+        assert share(case, "sliding") < min(share(case, "rolling"), share(case, "drilling")), bearing
 
 
 def test_shear_heating_lowers_the_rib_friction_where_the_rib_heats():
