@@ -5,12 +5,11 @@ solved case: film, kinematics from the traction balance, torque and its breakdow
 """
 import numpy as np
 
-from sim.errors import InputError, check_range
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_FT, EV_P0, EV_TOUT, NC, NEV, BearingArrays, FilmState, FrictionCase,
+from sim.physics.friction import (TRACTION_LAWS, EV_FT, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
                                   FrictionParams, WidthQuadrature, lubrication_state, roller_friction)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
-from sim.physics.roller_contact import contact_frames, empty_frames
+from sim.solvers.symmetry import symmetry_classes
 from sim.solvers.kinematics import KinematicsSettings, solve_kinematics, solve_kinematics_newton
 
 # unit conversions of the config (SI, um) to kernel units (mm, N, s, MPa) and of results to output units
@@ -42,60 +41,40 @@ class FrictionModel:
         g = self.geometry = geometry
         self.E_star = E_star
         self.lubricant = lubricant
+        # every value below passed the schema (sim.config_schema) in sim.api.simulation
         film = str(friction["film_thickness"])
-        if film not in FILM_FORMULAS:
-            raise InputError(f"friction.film_thickness = {film!r} is not one of {sorted(FILM_FORMULAS)}")
-        kin = str(friction["kinematics"])
-        if kin not in ("traction", "rolling"):
-            raise InputError(f"friction.kinematics = {kin!r} is not one of ['rolling', 'traction']")
-        self.traction_kinematics = kin == "traction"
-        npts = friction["width_points"]
-        if not (isinstance(npts, (int, np.integer)) and 2 <= int(npts) <= 64):
-            raise InputError(f"friction.width_points = {npts!r} is outside the allowed range [2, 64] (integer)")
-        t, wt = np.polynomial.legendre.leggauss(int(npts))
+        self.traction_kinematics = str(friction["kinematics"]) == "traction"
+        t, wt = np.polynomial.legendre.leggauss(int(friction["width_points"]))
         tq = 0.25 * np.pi * (t + 1.0)               # nodes on (0, pi/2)
         wq = 0.25 * np.pi * wt
-        self.tolerance = check_range("friction.tolerance", friction["tolerance"], 1e-14, 1e-2, low_open=True)
-        self.max_iterations = int(check_range("friction.max_iterations", friction["max_iterations"], 1, 10000))
-        self.seed_tolerance_factor = check_range("friction.seed_tolerance_factor", friction["seed_tolerance_factor"],
-                                                  1.0, 1e4)
+        self.tolerance = float(friction["tolerance"])
+        self.max_iterations = int(friction["max_iterations"])
+        self.seed_tolerance_factor = float(friction["seed_tolerance_factor"])
         drag = friction["drag"]
         model = str(drag["model"])
-        if model not in ("none", "roller_drag"):
-            raise InputError(f"friction.drag.model = {model!r} is not one of ['none', 'roller_drag']")
-        mu_s = check_range("friction.solid_friction_coefficient", friction["solid_friction_coefficient"], 0.0, 1.0)
-        v_s = MM_PER_M * check_range("friction.solid_slip_velocity", friction["solid_slip_velocity"], 0.0, 1.0,
-                                     low_open=True)
-        hysteresis = check_range("friction.hysteresis_loss_factor", friction["hysteresis_loss_factor"], 0.0, 0.5)
-        mu_cage = check_range("friction.cage_friction_coefficient", friction["cage_friction_coefficient"], 0.0, 1.0)
-        sigma = MM_PER_UM * check_range("bearing.surface.sigma", surface["sigma"], 0.0, 10.0, low_open=True)
-        B_ZH = check_range("bearing.surface.B_ZH", surface["B_ZH"], 0.0, 20.0, low_open=True)
-        C_ZH = check_range("bearing.surface.C_ZH", surface["C_ZH"], 0.0, 5.0, low_open=True)
+        mu_s = float(friction["solid_friction_coefficient"])
+        v_s = MM_PER_M * float(friction["solid_slip_velocity"])
+        hysteresis = float(friction["hysteresis_loss_factor"])
+        mu_cage = float(friction["cage_friction_coefficient"])
+        sigma = MM_PER_UM * float(surface["sigma"])
+        B_ZH = float(surface["B_ZH"])
+        C_ZH = float(surface["C_ZH"])
         sigma_rib = B_ZH_rib = C_ZH_rib = 0.0       # no roller-end / rib contact in a TSRB
         if g.type == "TRB":
-            for key in ("sigma_rib", "B_ZH_rib", "C_ZH_rib"):
-                if key not in surface:
-                    raise InputError(f"bearing.surface.{key} is missing (roller-end / rib mixed friction of a TRB)")
-            sigma_rib = MM_PER_UM * check_range("bearing.surface.sigma_rib", surface["sigma_rib"], 0.0, 10.0,
-                                                low_open=True)
-            B_ZH_rib = check_range("bearing.surface.B_ZH_rib", surface["B_ZH_rib"], 0.0, 20.0, low_open=True)
-            C_ZH_rib = check_range("bearing.surface.C_ZH_rib", surface["C_ZH_rib"], 0.0, 5.0, low_open=True)
+            sigma_rib = MM_PER_UM * float(surface["sigma_rib"])
+            B_ZH_rib = float(surface["B_ZH_rib"])
+            C_ZH_rib = float(surface["C_ZH_rib"])
         thermal = bool(friction["thermal"])
         k_steel = kappa_steel = 0.0                 # unused when isothermal
         if thermal:
-            for key in ("thermal_conductivity", "specific_heat"):
-                if key not in material:
-                    raise InputError(f"material.{key} is missing (flash temperature of friction.thermal)")
-            k_steel = check_range("material.thermal_conductivity", material["thermal_conductivity"], 1.0, 500.0)
-            c_s = check_range("material.specific_heat", material["specific_heat"], 100.0, 5000.0)
+            k_steel = float(material["thermal_conductivity"])
             # kappa = k / (rho c) [m^2/s] with rho [kg/m^3], c [J/(kg K)]
-            kappa_steel = MM2_PER_M2 * k_steel / (float(material["density"]) * c_s)
-        dT_tol = check_range("friction.temperature_tolerance", friction["temperature_tolerance"], 0.0, 10.0,
-                             low_open=True)
+            kappa_steel = MM2_PER_M2 * k_steel / (float(material["density"]) * float(material["specific_heat"]))
+        dT_tol = float(friction["temperature_tolerance"])
         self.drag_factor = 0.0
         if model == "roller_drag":
-            cd = check_range("friction.drag.drag_coefficient", drag["drag_coefficient"], 0.0, 10.0)
-            X = check_range("friction.drag.oil_volume_fraction", drag["oil_volume_fraction"], 0.0, 1.0)
+            cd = float(drag["drag_coefficient"])
+            X = float(drag["oil_volume_fraction"])
             # F_D = 1/2 rho X C_D Dwe Lwe (omega_c Dpw/2)^2 with rho [kg/m^3] as [t/mm^3]
             self.drag_factor = 0.5 * X * cd * g.Dwe * g.Lwe * (0.5 * g.Dpw) ** 2 * T_PER_MM3_PER_KG_PER_M3
         self.drag_model = model
@@ -131,12 +110,10 @@ class FrictionModel:
             eta0=eta0, Z=float(roelands_index(eta0, self.par.alpha)),
             beta=float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature)),
             drag_k=self.drag_factor * float(self.lubricant.density(op.oil_temperature)))
-        frames = empty_frames(Z, n)
-        contact_frames(raw["poses"], raw["ring"], np.radians(op.tilt), g.alpha, g.Dpw, a["x"], a["rho"],
-                       a["race_kind"], a["race_par"], a["rib"], *frames)
+        frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         X, Cen, Ax = frames.X, frames.Cen, frames.Ax
         q = raw["line_load"]
-        bearing = BearingArrays(q=q, Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
+        bearing = ContactLoads(q=q, Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), R_end=float(a["rib"][2]), rho_m=0.5 * g.Dwe)
         wi = float(angular_speed(op.speed))
         wc = float(angular_speed(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
@@ -144,18 +121,10 @@ class FrictionModel:
         if start is not None:
             wc, wR = start[0], start[1].copy()
         load = raw["Q"].sum(axis=1)
-        # symmetry: pure axial untilted, every roller alike; untilted, roller j mirrors roller Z - j
-        symmetric = op.Fr == 0.0 and op.tilt == 0.0
-        mirrored = op.tilt == 0.0
+        # the rollers one solution stands for: the classes of the quasi-static solve (sim.solvers.symmetry)
+        _, weight, source = symmetry_classes(Z, float(op.Fr), float(np.radians(op.tilt)), raw["roller_loads"])
         # rollers below the kinematic tolerance of the most loaded one cannot move the balances
-        active = load > self.tolerance * load.max()
-        weight = np.ones(Z)
-        if symmetric:
-            active[1:] = False
-            weight[0] = Z
-        elif mirrored:
-            active[Z // 2 + 1:] = False
-            weight[1:(Z + 1) // 2] = 2.0        # roller j stands for itself and its mirror Z - j
+        active = (load > self.tolerance * load.max()) & (weight > 0.0)
         shape = (Z, 2, n)
         film = FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (self.quad.tq.shape[0],)),
                          *(np.zeros(Z) for _ in range(4)))
@@ -191,12 +160,8 @@ class FrictionModel:
             roller_friction(jj, wR[jj], wc, wi, case, ev)
             F_cage = par.drag_k * wc * wc - ev[EV_FT]
             roller_loads[jj, 1] = par.mu_cage * F_cage * np.sign(wR[jj])
-        if symmetric:
-            wR[:] = wR[0]
-            roller_loads[:] = roller_loads[0]
-        elif mirrored:
-            wR[Z // 2 + 1:] = wR[1:(Z + 1) // 2][::-1]
-            roller_loads[Z // 2 + 1:] = roller_loads[1:(Z + 1) // 2][::-1]
+        wR[:] = wR[source]
+        roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
         j = int(np.argmax(load))
         v_roll = np.zeros((2, n))

@@ -116,7 +116,7 @@ def _traction(par, p, v, h, phi, eta_p, t_transit):
 
 
 # The solved bearing as the friction kernels read it (numba-supported named tuple).
-BearingArrays = namedtuple("BearingArrays", [
+ContactLoads = namedtuple("ContactLoads", [
     "q",            # (Z, 2, N) line loads [N/mm], race 0 outer, 1 inner
     "Qrib",         # (Z,) roller-end / rib loads [N]
     "R_eq",         # (2, N) radii of relative curvature [mm]
@@ -146,7 +146,7 @@ FilmState = namedtuple("FilmState", [
 WidthQuadrature = namedtuple("WidthQuadrature", ["tq", "wq"])
 
 # Everything the friction of a roller depends on besides the speeds: ContactFrames
-# (sim.physics.roller_contact), BearingArrays, FilmState, FrictionParams, WidthQuadrature.
+# (sim.physics.roller_contact), ContactLoads, FilmState, FrictionParams, WidthQuadrature.
 FrictionCase = namedtuple("FrictionCase", ["frames", "bearing", "film", "par", "quad"])
 
 # Floor of the entrainment speed u [mm/s] in the transit time 2 b / u: zero entrainment gives an
