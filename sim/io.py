@@ -7,8 +7,10 @@ that did not converge keeps its slot with ``converged = False`` and NaN data.
 import datetime as _dt
 import functools
 import os
+import socket
+import secrets
+import hashlib
 import subprocess
-import tempfile
 from importlib import metadata
 from pathlib import Path
 from typing import NamedTuple
@@ -268,12 +270,26 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     return _dataset(data, coords, indexes, provenance_attrs(title, config_yaml, settings))
 
 
+#: this host, as a short tag in the names of temporary files (a hostname may hold dots)
+HOST_TAG = hashlib.sha256(socket.gethostname().encode()).hexdigest()[:8]
+TMP_SUFFIX = ".tmp"
+
+
+def temporary_path(path):
+    """A new temporary name beside ``path``: ``.<name>.<host tag>-<pid>-<random>.tmp``, so that a
+    later run can tell an interrupted write (dead pid on this host) from a concurrent one."""
+    path = Path(path)
+    return path.parent / f".{path.name}.{HOST_TAG}-{os.getpid()}-{secrets.token_hex(4)}{TMP_SUFFIX}"
+
+
 def write_netcdf_atomic(ds, path):
-    """Write ``ds`` to ``path`` via a temporary file in the same folder and an atomic rename."""
+    """Write ``ds`` to ``path`` via a temporary file in the same folder and an atomic rename.
+
+    netCDF4 creates the temporary file itself, so it gets the user's umask (normally 0644), not
+    the 0600 of a mkstemp file."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
+    tmp = temporary_path(path)
     try:
         encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars
                     if ds[name].dtype.kind == "f"}

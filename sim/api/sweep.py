@@ -243,11 +243,10 @@ def _cached(path, op):
 #: pid) is stale after this long [s]: engineering choice, far above the write of one result file
 #: or the computation of one case (seconds to minutes), so a live writer is never disturbed.
 STALE_AFTER = 3600.0
-TMP_SUFFIX = ".tmp"
+TMP_SUFFIX = io.TMP_SUFFIX
 CLAIM_SUFFIX = ".claim"
 BROKEN_SUFFIX = ".broken"
-#: this host, as a short tag in the names of temporary files (a hostname may hold dots)
-HOST_TAG = hashlib.sha256(socket.gethostname().encode()).hexdigest()[:8]
+HOST_TAG = io.HOST_TAG
 
 
 def _pid_alive(pid):
@@ -262,8 +261,8 @@ def _pid_alive(pid):
 
 
 def _writer(name):
-    """(host tag, pid) of a temporary file written by :func:`_write_atomic`, or None (another writer,
-    e.g. sim.io's NetCDF temporaries, which carry no pid)."""
+    """(host tag, pid) of a temporary file written by :func:`_write_atomic` or
+    :func:`sim.io.write_netcdf_atomic` (:func:`sim.io.temporary_path`), or None (another writer)."""
     if not name.endswith(TMP_SUFFIX):
         return None
     parts = name[: -len(TMP_SUFFIX)].rsplit(".", 1)[-1].split("-")
@@ -337,7 +336,7 @@ def _write_atomic(path, data):
     """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.parent / f".{path.name}.{HOST_TAG}-{os.getpid()}-{secrets.token_hex(4)}{TMP_SUFFIX}"
+    tmp = io.temporary_path(path)
     fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
     try:
         with os.fdopen(fd, "wb") as f:

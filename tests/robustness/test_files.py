@@ -215,3 +215,20 @@ def test_read_only_sweep_collect_names_sweep_nc(tmp_path, mount):
     subprocess.run(["mount", "-o", "remount,ro", str(ro)], check=True)
     out = run(["-m", "sim.api.sweep", "collect", str(ro / "sweep")], tmp_path)
     assert_refused(out, f"cannot write {ro / 'sweep' / 'sweep.nc'}", "read-only", status=1)
+
+
+@pytest.mark.parametrize("umask, mode", [(0o022, 0o644), (0o077, 0o600), (0o002, 0o664)])
+def test_result_files_get_the_users_umask(tmp_path, umask, mode):
+    """write_netcdf_atomic creates result files like any other file (0666 minus the umask), not
+    with the 0600 of a mkstemp temporary."""
+    import xarray as xr
+
+    from sim.io import write_netcdf_atomic
+
+    old = os.umask(umask)
+    try:
+        path = write_netcdf_atomic(xr.Dataset({"a": ("x", [1.0])}), tmp_path / "result.nc")
+    finally:
+        os.umask(old)
+    assert os.stat(path).st_mode & 0o777 == mode
+    assert [p.name for p in tmp_path.iterdir()] == ["result.nc"]      # no temporary left
