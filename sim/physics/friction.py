@@ -157,7 +157,9 @@ MIN_ENTRAINMENT_SPEED = 1e-300
 NO_RELAXATION = 1e300
 # Illinois steps of the film temperature solve: Illinois converges superlinearly (order 1.44,
 # Dowell & Jarratt 1971), so this only stops a pathological case (then the last iterate is used).
-FILM_TEMPERATURE_MAX_STEPS = 100
+# An np.int64 types like the kinematic solves' max_iter (a Python int constant would compile a
+# second, Literal[int] copy of root_search).
+FILM_TEMPERATURE_MAX_STEPS = np.int64(100)
 
 
 @kernel
@@ -245,9 +247,9 @@ def _viscosity_factor(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad):
     hi = rise(0.0)
     if hi <= tol:
         return np.exp(-beta * hi)
-    search = root_search(0.0, hi, hi, tol)           # f(0) = rise(0) - 0
+    search = root_search(0.0, hi, hi, tol, tol, FILM_TEMPERATURE_MAX_STEPS)      # f(0) = rise(0) - 0
     while not search.done:
-        search = root_search_step(search, rise(search.x) - search.x, tol, tol, FILM_TEMPERATURE_MAX_STEPS)
+        search = root_search_step(search, rise(search.x) - search.x)
     return np.exp(-beta * search.x)
 
 

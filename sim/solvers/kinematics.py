@@ -53,10 +53,10 @@ def _solve_roller_speed(j, w0, wc, wi, case, ev, tol_M, max_iter):
     """
     lo = ROLLER_BRACKET[0] * w0
     roller_friction(j, lo, wc, wi, case, ev)
-    search = root_search(lo, ev[EV_MU], ROLLER_BRACKET[1] * w0, tol_M)
+    search = root_search(lo, ev[EV_MU], ROLLER_BRACKET[1] * w0, tol_M, 0.0, max_iter)
     while not search.done:
         roller_friction(j, search.x, wc, wi, case, ev)
-        search = root_search_step(search, ev[EV_MU], tol_M, 0.0, max_iter)
+        search = root_search_step(search, ev[EV_MU])
     if not search.bracketed:
         return w0, False
     return search.x, search.converged
@@ -110,10 +110,10 @@ def solve_kinematics(wc0, wi, wR, case, settings, totals):
     ev = np.empty(NEV)
     lo = CAGE_BRACKET[0] * wc0
     flo, ok = _cage_moment(lo, wi, wR, case, settings, ev, totals)
-    search = root_search(lo, flo, CAGE_BRACKET[1] * wc0, settings.tol_T)
+    search = root_search(lo, flo, CAGE_BRACKET[1] * wc0, settings.tol_T, 0.0, settings.max_iter)
     while not search.done:
         fx, ok = _cage_moment(search.x, wi, wR, case, settings, ev, totals)
-        search = root_search_step(search, fx, settings.tol_T, 0.0, settings.max_iter)
+        search = root_search_step(search, fx)
     if not search.bracketed:
         return wc0, False
     return search.x, search.converged and ok
