@@ -187,6 +187,9 @@ def _dimension_coords(Z, n_slices):
     return variables, indexes
 
 
+DIRECT_CONSTRUCTION = hasattr(xr.Dataset, "_construct_direct")   # see _dataset
+
+
 def _dataset(data, coords, indexes, attrs):
     """A Dataset of Variables that fit together by construction: ``data`` and ``coords`` name ->
     Variable (one per name; shared dims of one size, checked here), ``indexes`` the xarray
@@ -207,9 +210,6 @@ def _dataset(data, coords, indexes, attrs):
     if DIRECT_CONSTRUCTION:
         return xr.Dataset._construct_direct(variables, set(coords), dims, attrs, indexes)
     return xr.Dataset(data, coords=xr.Coordinates(coords, indexes=indexes), attrs=attrs)
-
-
-DIRECT_CONSTRUCTION = hasattr(xr.Dataset, "_construct_direct")
 
 
 _DESIGN_PARTS = {}     # repr of a Geometry -> its design values and ratings
