@@ -37,9 +37,10 @@ from omegaconf import OmegaConf
 
 import sim
 from sim import CONF_DIR
-from sim.api import (SKF_TAPERED_CONSTANTS, TRACTION_LAWS, Geometry, Lubricant, aihara_1987_trb, aihara_rolling_moment,
+from sim.api import (SKF_TAPERED_CONSTANTS, InputError, TRACTION_LAWS, Geometry, Lubricant, aihara_1987_trb, aihara_rolling_moment,
                      bearing_model_traction_law, operating_points, skf_2004_trb, torque_exponent, traction_curve,
                      twin_disc_contact)
+from sim.api.cli import run
 from sim.io import git_commit, package_version, write_netcdf_atomic
 
 REPO = CONF_DIR.parent
@@ -712,8 +713,10 @@ def main(argv=None):
     p.add_argument("--quick", action="store_true", help="reduced set of loads and slide-to-roll ratios (tests)")
     args = p.parse_args(argv)
     out = Path(args.out)
-    out.mkdir(parents=True, exist_ok=True)
+    if out.exists() and not out.is_dir():
+        raise InputError(f"--out = {str(out)!r} is a file: it must be a folder (existing or new)")
     ds = compute(quick=args.quick)
+    out.mkdir(parents=True, exist_ok=True)
     figures = {"trb": plot_trb_torque(ds, out), "rig": plot_rig(ds, out), "breakdown": plot_breakdown(ds, out),
                "traction": plot_traction(ds, out)}
     write_netcdf_atomic(ds, out / "validation.nc")
@@ -723,4 +726,4 @@ def main(argv=None):
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(run(main))

@@ -121,6 +121,13 @@ def test_optimize_refused_after_the_references_removes_the_folder_it_made(tmp_pa
     assert not (tmp_path / "outputs").exists()
 
 
+# ---------------------------------------------------------------------------- python -m studies.validation
+def test_validation_refuses_an_output_path_that_is_a_file(tmp_path):
+    target = tmp_path / "report"
+    target.write_text("not a folder")
+    assert_refused(run(["-m", "studies.validation", "--out", str(target)], tmp_path), "--out", "is a file")
+
+
 # ---------------------------------------------------------------------------- python -m studies.sensitivity
 def test_sensitivity_refuses_what_is_not_a_sensitivity_sweep(tmp_path):
     assert_refused(run(["-m", "studies.sensitivity", str(tmp_path / "absent.nc")], tmp_path), "is not a file")
@@ -139,4 +146,5 @@ def test_every_entry_point_is_covered():
     """The entry points of the issue, each with its refusal tests above (benchmarks are exempt)."""
     mains = {p.relative_to(REPO).as_posix() for p in list((REPO / "sim").rglob("*.py"))
              + list((REPO / "studies").rglob("*.py")) if 'if __name__ == "__main__":' in p.read_text()}
-    assert mains == {"sim/run.py", "sim/api/sweep.py", "studies/optimize.py", "studies/sensitivity.py"}
+    assert mains == {"sim/run.py", "sim/api/sweep.py", "studies/optimize.py", "studies/sensitivity.py",
+                     "studies/validation.py"}

@@ -132,6 +132,7 @@ def test_simulate_refuses_every_bound_before_anything_runs(composed, monkeypatch
 def test_simulate_and_build_model_pass_a_valid_config_on(composed, monkeypatch):
     """The shipped default passes the check and reaches the model (the validation is no stub)."""
     reached = []
+    sim.api.simulation.clear_caches()    # models of earlier tests with the same config are kept per content
     monkeypatch.setattr(sim.api.simulation.SolverSettings, "from_config", lambda cfg: reached.append(cfg) or 1 / 0)
     for call in (sim.simulate, sim.api.simulation.build_model):
         with pytest.raises(ZeroDivisionError):
