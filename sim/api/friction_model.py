@@ -35,6 +35,9 @@ class FrictionModel:
         The ``friction`` config node (conf/friction/default.yaml).
     surface : mapping
         ``bearing.surface``: sigma [um], B_ZH, C_ZH (and the rib's for a TRB).
+    material : mapping
+        The ``material`` config node: density [kg/m^3], and for ``friction.thermal`` the
+        thermal conductivity [W/(m K)] and specific heat [J/(kg K)] of the steel.
     """
 
     def __init__(self, geometry, E_star, lubricant, friction, surface, material):
