@@ -57,7 +57,7 @@ BearingArrays = namedtuple("BearingArrays", ["x", "rho", "w", "race_kind", "race
 ContactFrames = namedtuple("ContactFrames", ["X", "Nrm", "Cen", "Ax", "Xrib"])
 
 # Contact state of one roller (:func:`roller_contact`), arrays over N slices per raceway:
-# pose (3,): xi [mm], eta [mm], theta [rad] (sim.solvers.quasi_static), the state's pose (in);
+# pose (3,): xi [mm], eta [mm], theta [rad] of the roller (sim.solvers.quasi_static) (in);
 # q, active (2, N): line loads [N/mm] and loaded flags per race (0 outer, 1 inner): warm start
 # in, result out; f (5,): generalised contact forces on the roller along u', along v' [N], moment
 # about its centre [N mm], and on the inner ring along +z and +x [N]; K (5, 5): tangent stiffness
@@ -74,8 +74,9 @@ RollerContact = namedtuple("RollerContact", ["pose", "q", "active", "f", "K", "Q
 # Slice deflections are solved to at most DEFLECTION_TOL_REL of the roller's deepest penetration:
 # its loads are then accurate to ~1e-12 relative, 100x below the final roller tolerance of the
 # quasi-static solver (solver.tolerance x roller_tolerance_ratio = 1e-10), also for a lightly
-# loaded roller; and to at most DEFLECTION_TOL_ABS [mm], the same 1e-12 of a 0.1 mm penetration
-# (the deepest of the bearings here at their rated loads are ~0.01-0.1 mm).
+# loaded roller; and to at most DEFLECTION_TOL_ABS [mm], the same 1e-12 of a 0.1 mm penetration,
+# deeper than the deepest of the cases here (0.005-0.05 mm: trb_32208 at 4.5-40 kN,
+# tsrb_reference at 4.5 kN, tsrb_pinion PCR 200 at 35 kN).
 DEFLECTION_TOL_REL = 1e-12
 DEFLECTION_TOL_ABS = 1e-13
 

@@ -942,10 +942,14 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
             for a in range(4):
                 rollers.rib_contact[j, a] = rollers.rib_contact[src, a]
             for s in range(2):
-                copy_matrix(frames.X[j, s], frames.X[src, s])
-                copy_matrix(frames.Nrm[j, s], frames.Nrm[src, s])
-            copy_vector(frames.Cen[j], frames.Cen[src])
-            copy_vector(frames.Ax[j], frames.Ax[src])
-            copy_vector(frames.Xrib[j], frames.Xrib[src])
+                for k in range(n):
+                    for a in range(2):
+                        frames.X[j, s, k, a] = frames.X[src, s, k, a]
+                        frames.Nrm[j, s, k, a] = frames.Nrm[src, s, k, a]
+            for a in range(2):
+                frames.Cen[j, a] = frames.Cen[src, a]
+                frames.Xrib[j, a] = frames.Xrib[src, a]
+            for a in range(4):
+                frames.Ax[j, a] = frames.Ax[src, a]
     return SolveReport(converged, it_ring + 1, residual_axial, residual_radial, nbad, nload, roller_its, roller_evals,
                        n_backtracks, nz)
