@@ -1,9 +1,63 @@
 """The project's one numba setup.
 
-Every hot kernel is decorated with :data:`kernel`: ``njit`` with an on-disk cache (CI and
+Every hot kernel is decorated with :func:`kernel`: ``njit`` with an on-disk cache (CI and
 sweeps pay the compile time once) and strict float semantics. Setting the environment
 variable ``NUMBA_DISABLE_JIT=1`` runs the same code as plain Python (tests pass either way).
+
+Cache validity. Numba keys a cached kernel on its own source file only (modification time and
+size): a kernel whose callee in another module changed would load the stale machine code of the
+old callee (seen in issue 14: a changed rolling-force formula in ``ehl.py`` left the cached
+friction kernels of ``friction.py`` on the old formula). The cache therefore lives in a folder
+named by a SHA-256 of every source file of ``sim/`` (:func:`source_fingerprint`): any edit of
+the package starts a fresh cache, and two versions of the package never share one. The folder
+is ``$NUMBA_CACHE_DIR/sim-<hash>`` when the user set that variable, else
+``sim/__pycache__/numba/sim-<hash>`` beside the sources (numba's own default place); where
+that is not writable, numba falls back to its user-wide cache as usual.
 """
+import hashlib
+import os
+from functools import lru_cache
+from pathlib import Path
+
 import numba
 
-kernel = numba.njit(cache=True, fastmath=False, nogil=True)
+SIM_ROOT = Path(__file__).resolve().parents[1]     # the whole sim/ package, every layer
+#: characters of the SHA-256 hex digest in the cache folder name (64 bits: no collision in practice)
+CACHE_KEY_LENGTH = 16
+
+_njit = numba.njit(cache=True, fastmath=False, nogil=True)
+
+
+def sim_sources():
+    """Every source file of ``sim/`` (all subpackages), in a fixed order."""
+    return sorted(SIM_ROOT.rglob("*.py"))
+
+
+@lru_cache(maxsize=1)
+def source_fingerprint():
+    """SHA-256 hex digest over the relative paths and bytes of :func:`sim_sources`."""
+    h = hashlib.sha256()
+    for path in sim_sources():
+        h.update(str(path.relative_to(SIM_ROOT)).encode())
+        h.update(path.read_bytes())
+    return h.hexdigest()
+
+
+def cache_dir():
+    """The numba cache folder of this version of ``sim/`` (module docstring)."""
+    base = os.environ.get("NUMBA_CACHE_DIR") or str(SIM_ROOT / "__pycache__" / "numba")
+    return os.path.join(base, f"sim-{source_fingerprint()[:CACHE_KEY_LENGTH]}")
+
+
+def kernel(func):
+    """``numba.njit(cache=True, fastmath=False, nogil=True)`` with the cache in :func:`cache_dir`.
+
+    Numba picks a function's cache folder when it is decorated (``numba.config.CACHE_DIR``); it
+    is set for that moment only, so other numba users in the process keep their own setting.
+    """
+    previous = numba.config.CACHE_DIR
+    numba.config.CACHE_DIR = cache_dir()
+    try:
+        return _njit(func)
+    finally:
+        numba.config.CACHE_DIR = previous

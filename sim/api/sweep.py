@@ -57,6 +57,7 @@ from omegaconf import OmegaConf
 from tqdm import tqdm
 
 from sim import io
+from sim._math.jit import source_fingerprint
 from sim.api.cases import operating_points
 from sim.api.cli import PROJECT_ERRORS, one_line, refuse
 from sim.api.schema import ConfigError, validate
@@ -73,23 +74,14 @@ BASIC_SWEEPER = "basic"       # the hydra/sweeper choice whose job list sweep_jo
 
 
 # ------------------------------------------------------------------ cache keys and cached cases
-SIM_ROOT = Path(__file__).resolve().parents[1]   # the whole sim/ package, every layer
-
-
-def fingerprint_sources():
-    """Every source file of ``sim/`` (all subpackages), in a fixed order."""
-    return sorted(SIM_ROOT.rglob("*.py"))
-
-
 @lru_cache(maxsize=1)
 def code_fingerprint():
-    """SHA-256 over the sources of ``sim/`` and the numpy, numba and xarray versions."""
+    """SHA-256 over the sources of ``sim/`` (:func:`sim._math.jit.source_fingerprint`, which also
+    names the numba cache) and the numpy, numba and xarray versions."""
     import numba
 
     h = hashlib.sha256(f"numpy {np.__version__} numba {numba.__version__} xarray {xr.__version__}".encode())
-    for path in fingerprint_sources():
-        h.update(str(path.relative_to(SIM_ROOT)).encode())
-        h.update(path.read_bytes())
+    h.update(source_fingerprint().encode())
     return h.hexdigest()
 
 

@@ -459,16 +459,18 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
 # ---------------------------------------------------------------------------------------------
 
 def test_hydrodynamic_rolling_force_exponents():
-    """Zhou & Hoeprich (1991): F = 2.86 E' R l G^0.022 U^0.66 W^0.3: F ~ u^0.66, q^0.3,
-    eta0^0.66, alpha^0.022, linear in the strip length. Exact power laws: 1e-12 relative."""
-    def F(u=U_ENTR, q=Q_LINE, l=1.0, eta0=ETA0, alpha=ALPHA):
-        return ehl.rolling_force_hydrodynamic(u, q, R_ROLL, l, eta0, alpha, EP)
+    """Goksem & Hargreaves (1978): F = l (4.318/alpha) (G U)^0.658 W^0.0126 R: F ~ u^0.658,
+    q^0.0126, eta0^0.658, alpha^(0.658 - 1), R^(1 - 0.658 - 0.0126), linear in the strip length.
+    Exact power laws: 1e-12 relative."""
+    def F(u=U_ENTR, q=Q_LINE, l=1.0, eta0=ETA0, alpha=ALPHA, R=R_ROLL):
+        return ehl.rolling_force_hydrodynamic(u, q, R, l, eta0, alpha, EP)
 
     F0 = F()
-    assert F(u=2 * U_ENTR) / F0 == pytest.approx(2 ** 0.66, rel=1e-12)
-    assert F(q=2 * Q_LINE) / F0 == pytest.approx(2 ** 0.3, rel=1e-12)
-    assert F(eta0=2 * ETA0) / F0 == pytest.approx(2 ** 0.66, rel=1e-12)
-    assert F(alpha=2 * ALPHA) / F0 == pytest.approx(2 ** 0.022, rel=1e-12)
+    assert F(u=2 * U_ENTR) / F0 == pytest.approx(2 ** 0.658, rel=1e-12)
+    assert F(q=2 * Q_LINE) / F0 == pytest.approx(2 ** 0.0126, rel=1e-12)
+    assert F(eta0=2 * ETA0) / F0 == pytest.approx(2 ** 0.658, rel=1e-12)
+    assert F(alpha=2 * ALPHA) / F0 == pytest.approx(2 ** (0.658 - 1.0), rel=1e-12)
+    assert F(R=2 * R_ROLL) / F0 == pytest.approx(2 ** (1.0 - 0.658 - 0.0126), rel=1e-12)
     assert F(l=3.0) / F0 == pytest.approx(3.0, rel=1e-12)
     assert F(u=0.0) == 0.0 and F(q=0.0) == 0.0
 

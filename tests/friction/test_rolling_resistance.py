@@ -8,7 +8,8 @@ the film on each surface and the dissipation integrated from the velocity field.
 2. the energy identity: dissipation = -(F_1 U_1 + F_2 U_2), the power taken from both surfaces,
    in rolling and in rolling with sliding; the pressure-centre identity int p x dx = 2 F R;
 3. the closed-form kernels of :mod:`sim.physics.ehl`: ``rolling_force_hydrodynamic`` is the
-   Poiseuille force on EACH surface (so the film dissipates 2 u F), and the friction code's
+   Poiseuille force on EACH surface (so the film dissipates 2 u F), nearly independent of the
+   load as the numerical force is, and the friction code before issue 14, with the
    couple F R (power F u, sim/physics/friction.py: ``Mrr = Frr * Req``, power ``Mrr |w_roll|``)
    counts the loss once: the factor of 2 of issue 14, cause (a).
 
@@ -122,31 +123,50 @@ def test_pressure_centre_moment_is_2FR(rolling):
 
 
 def test_rolling_force_kernel_is_the_force_on_each_surface(rolling):
-    """rolling_force_hydrodynamic (2.86 E' R l G^0.022 U^0.66 W^0.3, per unit length here)
-    against the numerical Poiseuille force on ONE surface: within 10 % at M = 40 (W = 2.5e-4,
-    the middle of the fit's load range; found 0.97), within 20 % over M = 15-67 (found 1.20 at
-    M = 15 and 0.87 at M = 67: the scatter of a three-exponent fit against this isothermal,
-    incompressible, fully flooded solution). Were the kernel the total of both surfaces, the
-    ratio would be 0.5."""
+    """rolling_force_hydrodynamic (Goksem & Hargreaves 1978, per unit length here) against the
+    numerical Poiseuille force on ONE surface: numerical / kernel within 1.0-1.4 at M = 15-67
+    (found 1.16-1.32). The band is the one the film test above allows the incompressible
+    solution over Pan & Hamrock's compressible film (the Poiseuille force scales with the inlet
+    film): the numerical force may exceed a fit to compressible solutions by that much, not be
+    below it. Were the kernel the total of both surfaces, the ratio would be near 0.5-0.7."""
     ratio = {M: s.F_poiseuille / ehl.rolling_force_hydrodynamic(u, q, R, 1.0, ETA0, ALPHA, EP)
              for M, (q, u, s) in rolling.items()}
-    assert ratio[40] == pytest.approx(1.0, abs=0.10), ratio
     for M, r in ratio.items():
-        assert 0.8 < r < 1.25, ratio
+        assert 1.0 < r < 1.4, ratio
+
+
+def test_rolling_force_hardly_depends_on_load_as_the_kernel():
+    """In the EHL regime the Poiseuille force is made in the inlet, whose shape the load hardly
+    changes: at fixed U = 2e-11 over W = 0.6-6e-4 (a decade of load, q = 55-550 N/mm) the
+    numerical force per unit length follows W^m with |m| < 0.05 (found -0.00 to 0.03 at U =
+    1e-11 and 3e-11), and the kernel's exponent 0.0126 lies within 0.05 of it. The former
+    kernel's W^0.3 (Zhou & Hoeprich's eq. 17: W^0.246) fails this by 0.25: it made the rolling
+    torque of a whole bearing grow like Fa^0.3 by itself (issue 14, exponent n). The 0.05
+    bound: the local slopes between neighbouring loads scatter by +-0.05 (the grid moves the
+    outlet constriction, 7-9 % of F, test above)."""
+    U = 2e-11
+    Ws = np.array([0.6e-4, 1.5e-4, 3e-4, 6e-4])
+    F_num, F_ker = [], []
+    for W in Ws:
+        q, u = _point(W, U)
+        F_num.append(solve_line_contact(q, R, EP, ETA0, ALPHA, u, u, **GRID).F_poiseuille)
+        F_ker.append(ehl.rolling_force_hydrodynamic(u, q, R, 1.0, ETA0, ALPHA, EP))
+    m_num = np.polyfit(np.log(Ws), np.log(F_num), 1)[0]
+    m_ker = np.polyfit(np.log(Ws), np.log(F_ker), 1)[0]
+    assert abs(m_num) < 0.05, m_num
+    assert abs(m_ker - m_num) < 0.05, (m_ker, m_num)
 
 
 def test_friction_code_counts_the_rolling_loss_once_factor_2(rolling):
-    """Issue 14, cause (a). The friction code applies the couple M = F R (F from
-    rolling_force_hydrodynamic) between roller and ring about the relative rolling axis, whose
-    speed is omega_rel = u/R: power F u. The film dissipates D = 2 u F_num. Found
-    F u / D = 0.42-0.57 (one half, to the fit's scatter): the loss is under-counted by 2. The
-    corrected couple rolling_moment_hydrodynamic = 2 F R gives 2 F u = D within 20 % (10 % at
-    M = 40, found 1.03)."""
+    """Issue 14, cause (a). A couple M = F R (F from rolling_force_hydrodynamic) between roller
+    and ring about the relative rolling axis, whose speed is omega_rel = u/R, has the power F u,
+    while the film dissipates D = 2 u F_num: F u / D = F / (2 F_num) = 0.36-0.5 with the 1.0-1.4
+    band of the kernel above, one half of what the film loses (the count before issue 14).
+    The couple rolling_moment_hydrodynamic = 2 F R gives 2 F u / D = F / F_num in 0.71-1.0."""
     for M, (q, u, s) in rolling.items():
         F = ehl.rolling_force_hydrodynamic(u, q, R, 1.0, ETA0, ALPHA, EP)
         omega_rel = u / R
-        assert 0.4 < (F * R) * omega_rel / s.dissipation < 0.6, M
+        assert 0.5 / 1.4 < (F * R) * omega_rel / s.dissipation < 0.5, M
         Mc = ehl.rolling_moment_hydrodynamic(u, q, R, 1.0, ETA0, ALPHA, EP)
         assert Mc == pytest.approx(2 * F * R, rel=1e-15)
-        tol = 0.10 if M == 40 else 0.20
-        assert Mc * omega_rel / s.dissipation == pytest.approx(1.0, abs=tol), M
+        assert 1.0 / 1.4 < Mc * omega_rel / s.dissipation < 1.0, M

@@ -13,6 +13,7 @@ import xarray as xr
 from omegaconf import OmegaConf
 
 import sim
+from sim._math import jit
 import sim.api.sweep
 from sim.api.cases import operating_points
 from sim.api.sweep import CACHE_SUFFIX, _key_base, cache_file, case_key, decode_case, encode_case, run_cases
@@ -122,7 +123,7 @@ def test_grid_run_equals_simulate(tmp_path):
 
 def test_code_fingerprint_covers_every_layer_of_sim():
     """A change to any kernel (physics, solvers, numerics) must invalidate the cache."""
-    names = {str(path.relative_to(sim.api.sweep.SIM_ROOT)) for path in sim.api.sweep.fingerprint_sources()}
+    names = {str(path.relative_to(jit.SIM_ROOT)) for path in jit.sim_sources()}
     for required in ("physics/friction.py", "solvers/quasi_static.py", "_math/jit.py", "geometry.py", "api/simulation.py"):
         assert required in names
 

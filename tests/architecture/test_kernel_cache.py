@@ -1,0 +1,39 @@
+"""The numba cache is keyed on the whole of ``sim/`` (sim._math.jit): a kernel never runs the
+stale machine code of a callee that changed in another module."""
+import os
+import shutil
+
+import numba
+import pytest
+
+from sim._math import jit
+from sim.physics import ehl
+
+
+def _fingerprint_of(root, monkeypatch):
+    monkeypatch.setattr(jit, "SIM_ROOT", root)
+    return jit.source_fingerprint.__wrapped__()
+
+
+def test_any_edit_of_any_module_changes_the_cache_folder(tmp_path, monkeypatch):
+    """Copy sim/, change one character of ehl.py (a callee of the friction kernels): the
+    fingerprint, and with it the cache folder name, changes; an unchanged copy keeps it."""
+    copy = tmp_path / "sim"
+    shutil.copytree(jit.SIM_ROOT, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    before = _fingerprint_of(copy, monkeypatch)
+    assert before == jit.source_fingerprint()          # same bytes, same paths: same key
+    ehl_py = copy / "physics" / "ehl.py"
+    ehl_py.write_text(ehl_py.read_text().replace("4.318", "4.319", 1))
+    assert _fingerprint_of(copy, monkeypatch) != before
+
+
+@pytest.mark.skipif(os.environ.get("NUMBA_DISABLE_JIT") == "1", reason="no compiled kernels without the JIT")
+def test_kernels_are_cached_in_the_fingerprinted_folder():
+    """A compiled kernel's index file lands in cache_dir(), named by the fingerprint, and the
+    process-wide numba setting is left as it was."""
+    ehl.film_line(3000.0, 100.0, 4.0, 4e-8, 0.021, 228000.0, ehl.FILM_PAN_HAMROCK)
+    folder = jit.cache_dir()
+    assert folder.endswith("sim-" + jit.source_fingerprint()[:jit.CACHE_KEY_LENGTH])
+    index_files = [f for _, _, files in os.walk(folder) for f in files if f.startswith("ehl.film_line")]
+    assert any(f.endswith(".nbi") for f in index_files), index_files
+    assert numba.config.CACHE_DIR == os.environ.get("NUMBA_CACHE_DIR", "")
