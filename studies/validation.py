@@ -90,6 +90,23 @@ QUICK_SRR = np.array([0.0, *TABLE_SRR])
 
 FIGURE_DPI = 110
 
+#: Section e: the ASSUMED model parameters, each at the low and high end of the range its config
+#: comment cites (override key, low, high, where the range comes from). Bearing keys apply to the
+#: bearings that have them (the rib only to the TRB).
+SENSITIVITY = (
+    ("lubricant.eyring_stress", 2.0, 10.0, "MPa; mineral oils 2-10 MPa at 40-80 degC (Johnson & Tevaarwerk 1977)"),
+    ("lubricant.limiting_shear_coefficient", 0.05, 0.08, "1; mineral oils (Bair & Winer 1979; Hoeglund 1999)"),
+    ("lubricant.limiting_shear_stress_0", 1.0, 5.0, "MPa; 'a few MPa' (Bair & Winer 1979)"),
+    ("lubricant.shear_modulus", 300.0, 3000.0, "MPa; 0.3-3 GPa (Johnson & Tevaarwerk 1977)"),
+    ("lubricant.pressure_viscosity", 0.015, 0.025, "1/MPa; paraffinic mineral oils (Hamrock et al. 2004)"),
+    ("friction.hysteresis_loss_factor", 0.0035, 0.014, "1; x0.5 and x2 of 0.007 (no published range read here)"),
+    ("friction.solid_friction_coefficient", 0.08, 0.12, "1; lubricated steel on steel, usual 0.08-0.12"),
+    ("bearing.rib_contact_height_ratio", 0.10, 0.20, "1; ASSUMED 0.15, +-1/3 (thesis 5.5.1 gives none)"),
+    ("bearing.roller_end_radius_ratio", 0.80, 0.95, "1; typical 0.8-0.95 (config comment)"),
+)
+QUICK_SENSITIVITY = ("lubricant.eyring_stress", "bearing.rib_contact_height_ratio")
+SENSITIVITY_LOADS = (4500.0, 40000.0)     # N, the TRB 32208 points of the issue's targets
+
 
 # --------------------------------------------------------------------------------- reference models
 def reference_inputs(bearing="trb_32208", temperature=55.0, speed=2000.0):
@@ -247,6 +264,9 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
     mu = np.array([[traction_curve(cfg_disc, srr, u=u, law=law, **TWIN_DISC) for u in TWIN_DISC_U] for law in laws])
     h_disc = np.array([twin_disc_contact(cfg_disc, u=u, **TWIN_DISC)["h"] * 1e3 for u in TWIN_DISC_U])   # um
 
+    log("e. sensitivity to the assumed parameters")
+    sens = sensitivity(quick, speed, temp, rig_loads)
+
     components = [str(c) for c in trb.component.values]
     ds = xr.Dataset(coords={
         "Fa": ("Fa", np.array(loads), {"units": "N", "long_name": "axial load (TRB 32208 sweep)"}),
@@ -340,6 +360,17 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
                             temperature=float(c["temperature"]), law=law) for law in laws],
             "1", "traction coefficient of the law at the published condition")
 
+    # e.
+    ds = ds.assign_coords(parameter=("parameter", [r[0] for r in sens["rows"]], {"long_name": "ASSUMED parameter (override key)"}),
+                          setting=("setting", ["low", "base", "high"], {"long_name": "parameter value"}),
+                          sensitivity_output=("sensitivity_output", list(SENSITIVITY_OUTPUTS),
+                                              {"long_name": "output of the sensitivity table"}))
+    put("parameter_value", ("parameter", "setting"), [r[1] for r in sens["rows"]], "see parameter_range_source",
+        "parameter values of the sensitivity runs")
+    ds["parameter_range_source"] = ("parameter", [r[2] for r in sens["rows"]], {"long_name": "units; source of the range"})
+    put("sensitivity", ("parameter", "setting", "sensitivity_output"), [r[3] for r in sens["rows"]], "see sensitivity_output",
+        "outputs at the low, base and high parameter value (" + "; ".join(f"{k}: {v}" for k, v in SENSITIVITY_OUTPUTS.items()) + ")")
+
     # targets (e.)
     rows = targets(ds)
     ds = ds.assign_coords(target=("target", [r["target"] for r in rows], {"long_name": "validation target"}),
@@ -365,6 +396,50 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
         "sources": "thesis; SKF2004; Aihara1987; JohnsonTevaarwerk1977; BairWiner1979; issue14",
     })
     return ds
+
+
+#: Outputs of the sensitivity table and their units.
+SENSITIVITY_OUTPUTS = {"TRB 32208 at 4.5 kN [N mm]": "N*mm", "TRB 32208 at 40 kN [N mm]": "N*mm",
+                       "n (4.5-40 kN, two points)": "1", "prototype / TRB at the largest Fig. 6.8 load": "1"}
+
+
+def _base_value(key, bearing):
+    """The value of ``key`` in the composed config of ``bearing`` (None when the bearing has no such key)."""
+    cfg = sim.load_config([f"bearing={bearing}"])
+    node = OmegaConf.select(cfg, key)
+    return None if node is None else float(node)
+
+
+def sensitivity(quick, speed, temperature, rig_loads):
+    """Section e: the outputs of :data:`SENSITIVITY_OUTPUTS` with each ASSUMED parameter at the low
+    and high end of its cited range, the others at their config values (one at a time)."""
+    keys = [row for row in SENSITIVITY if not quick or row[0] in QUICK_SENSITIVITY]
+    F_rig = max(rig_loads)
+
+    def outputs(extra_trb, extra_proto):
+        trb, _ = _pure_axial("trb_32208", sorted(set(SENSITIVITY_LOADS) | {F_rig}), speed, temperature, extra_trb)
+        proto, _ = _pure_axial("tsrb_prototype", [F_rig], speed, temperature, extra_proto)
+        M = [_pick(trb, "torque", Fa=F) for F in SENSITIVITY_LOADS]
+        n = math.log(M[1] / M[0]) / math.log(SENSITIVITY_LOADS[1] / SENSITIVITY_LOADS[0])
+        return [*M, n, _pick(proto, "torque", Fa=F_rig) / _pick(trb, "torque", Fa=F_rig)]
+
+    base = outputs((), ())
+    rows = []
+    for key, low, high, source in keys:
+        values, table = [], []
+        for value in (low, None, high):
+            if value is None:
+                values.append(_base_value(key, "trb_32208") if _base_value(key, "trb_32208") is not None
+                              else _base_value(key, "tsrb_prototype"))
+                table.append(base)
+                continue
+            over = [f"{key}={value:g}"]
+            values.append(value)
+            has_trb = _base_value(key, "trb_32208") is not None
+            has_proto = _base_value(key, "tsrb_prototype") is not None
+            table.append(outputs(over if has_trb else (), over if has_proto else ()))
+        rows.append((key, values, source, table))
+    return {"rows": rows}
 
 
 def _exponent_or_nan(F, M):
@@ -689,6 +764,22 @@ def write_report(ds, out, figures):
              *[_f(ds.traction_coefficient.sel(law=law, u=u).isel(srr=i), "{:.4f}") for i in idx]]
             for law in ds.law.values for u in ds.u.values]
     a(_table(["law", "u [m/s]", "h [um]", *[f"mu at S = {ds.srr.values[i]:.3g}" for i in idx]], rows) + "\n")
+
+    a("## e. Sensitivity to the assumed parameters\n")
+    a("Each ASSUMED parameter of the friction model at the low and the high end of the range its config comment cites, "
+      "the others at their config values, at the rig conditions of section a (issue 14 item 3: the assumed rib "
+      "dimensions; the standards' rule that an assumed value shows how much the result depends on it). Bearing keys "
+      "change the bearings that have them (the rib only the TRB). n here is the two-point exponent 4.5-40 kN.\n")
+    outs = list(ds.sensitivity_output.values)
+    rows = []
+    for prm in ds.parameter.values:
+        r = ds.sel(parameter=prm)
+        for st in ds.setting.values:
+            v = r.sensitivity.sel(setting=st)
+            rows.append([f"`{prm}`" if st == "low" else "", st, _f(r.parameter_value.sel(setting=st), "{:g}"),
+                         *[_f(v.sel(sensitivity_output=o), "{:.0f}" if "[N mm]" in o else "{:.3f}") for o in outs]])
+    a(_table(["parameter", "setting", "value", *outs], rows) + "\n")
+    a("Ranges: " + "; ".join(f"`{p}`: {s}" for p, s in zip(ds.parameter.values, ds.parameter_range_source.values)) + ".\n")
 
     a("## Files\n")
     a("- `validation.nc`: every plotted number with units (CF attributes); the target table as `target_*`.")

@@ -89,3 +89,24 @@ def test_traction_curve_is_zero_without_slip_and_rises_with_it(report):
     assert np.all(mu.sel(srr=0.0) == 0.0)
     assert np.all(mu.diff("srr") > 0.0)
     assert np.all(mu < 0.2)   # bounded by tau_L/p of a mineral oil (c = 0.06 plus tau_L0/p), far below 0.2
+
+
+def test_sensitivity_base_row_is_the_reported_model_and_the_rib_height_acts_on_the_trb_only(report):
+    """Section e: the base setting reproduces the section a/b numbers (same model, same inputs:
+    1e-9); a higher rib contact (a longer lever of the rib friction about the roller axis and the
+    bearing axis) raises the TRB's torque at 40 kN, where the rib carries a third of it; the
+    prototype has no rib, so its torque is unchanged and the ratio falls."""
+    _, ds, text = report
+    base = ds.sensitivity.sel(setting="base")
+    outs = list(ds.sensitivity_output.values)
+    for prm in ds.parameter.values:
+        assert float(base.sel(parameter=prm).isel(sensitivity_output=0)) == pytest.approx(
+            float(ds.torque_trb_32208.sel(Fa=4500.0)), rel=1e-9)
+        assert float(base.sel(parameter=prm).isel(sensitivity_output=1)) == pytest.approx(
+            float(ds.torque_trb_32208.sel(Fa=40000.0)), rel=1e-9)
+    rib = ds.sensitivity.sel(parameter="bearing.rib_contact_height_ratio")
+    low, high = rib.sel(setting="low"), rib.sel(setting="high")
+    assert float(high.isel(sensitivity_output=1)) > float(low.isel(sensitivity_output=1))
+    ratio = outs.index("prototype / TRB at the largest Fig. 6.8 load")
+    assert float(high.isel(sensitivity_output=ratio)) < float(low.isel(sensitivity_output=ratio))
+    assert "## e. Sensitivity to the assumed parameters" in text
