@@ -170,8 +170,14 @@ APK_REASON = ("aPk measured from the small end (MODEL.md 4): a bigger aPk moves 
 # comes out as the thesis says, the test fails and this table must be updated.
 DEVIATIONS = {
     ("PCR_down", "pmax"): "PCR 36 (aA <= 0): pmax +11 to +12 % here, with a contact 20 % shorter under the same load",
+    ("PCR_down", "torque"): ("PCR 36: drilling +75 % as the thesis says (7.2.1), but the contact 20-27 % shorter lowers "
+                             "the EHL rolling loss by more (-2 to -4 % in all): the rolling force per unit length "
+                             "hardly depends on load (Goksem & Hargreaves 1978; the 1-D Reynolds solution, "
+                             "tests/friction/test_rolling_resistance.py), so it scales with the contact length; a "
+                             "W^0.25-0.3 fit (Zhou & Hoeprich 1991, used in MBS models like the thesis's) loads it "
+                             "onto fewer, busier slices instead"),
     ("kappa_up", "pmax", "combined"): "kappa 0.99: pmax +5 % here under combined load (pure axial: -3 %, as the thesis)",
-    ("aPk_up", "torque"): APK_REASON,
+    ("aPk_up", "torque", "combined"): APK_REASON,   # pure axial: torque -, as the thesis (since issue 14)
     ("aPk_up", "pmax", "pure axial"): APK_REASON,
     ("aPk_down", "torque"): APK_REASON,
     ("aPk_down", "pmax"): APK_REASON,
