@@ -189,6 +189,16 @@ def validate(study):
              b.get("min_improvement"), "a number >= 0")
     _require(_is_number(b.get("dedup_distance")) and 0.0 <= b["dedup_distance"] < 1.0, "budget.dedup_distance",
              b.get("dedup_distance"), "a number in [0, 1)")
+    rf = s.get("refine", {})
+    _require(_is_int(rf.get("max_simulations"), 0), "refine.max_simulations", rf.get("max_simulations"),
+             "an integer >= 0 (0: no local stage)")
+    for key in ("initial_step", "final_step"):
+        _require(_is_number(rf.get(key)) and 0.0 < rf[key] <= 1.0, f"refine.{key}", rf.get(key),
+                 "a number in (0, 1] (unit-cube coordinates)")
+    _require(rf["final_step"] <= rf["initial_step"], "refine.final_step", rf["final_step"],
+             f"<= refine.initial_step = {rf['initial_step']}")
+    _require(_is_number(rf.get("active_tolerance")) and 0.0 <= rf["active_tolerance"] < 0.5,
+             "refine.active_tolerance", rf.get("active_tolerance"), "a number in [0, 0.5)")
     c = s.get("constraints", {})
     _require(_is_number(c.get("axial_displacement_max")) and c["axial_displacement_max"] > 0.0,
              "constraints.axial_displacement_max", c.get("axial_displacement_max"), "a number > 0 [mm]")

@@ -14,6 +14,7 @@ from sim.api import GeometryError, InputError, OperatingPoint, simulate
 
 # CF flags of the ``status`` variable
 STATUS = {"ok": 0, "not_converged": 1, "geometry_error": 2, "failed": 3}
+STATUS_NAMES = {v: k for k, v in STATUS.items()}
 
 # Results kept per point besides the objective; names and units as in DATA.md.
 RECORDED = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "P", "edge_stress")
@@ -136,9 +137,9 @@ def points_dataset(space, X, records, source, round_index, attrs):
     records : list of dict
         From :func:`evaluate_design`.
     source : str
-        ``initial`` (space-filling design) or ``verification``.
+        ``initial`` (space-filling design), ``verification`` or ``refinement`` (studies.refine).
     round_index : int
-        0 for the initial design, else the verification round.
+        0 for the initial design, -1 for the final local stage, else the verification round.
     attrs : dict
         Dataset attributes (provenance, study config).
     """
@@ -150,9 +151,10 @@ def points_dataset(space, X, records, source, round_index, attrs):
                                ("aPk", "mm", "small end face to the first contact point"),
                                ("alpha", "deg", "roller-axis (mean contact) angle"),
                                ("ratings_alpha", "deg", "contact angle of the ISO 281 factors"))}
-    coords["source"] = ("design", [source] * n, {"long_name": "initial (space-filling) or verification run"})
+    coords["source"] = ("design", [source] * n,
+                        {"long_name": "initial (space-filling), verification or refinement (final local stage) run"})
     coords["round"] = ("design", np.full(n, round_index, dtype=np.int32),
-                       {"units": "1", "long_name": "verification round (0: initial design)"})
+                       {"units": "1", "long_name": "verification round (0: initial design, -1: final local stage)"})
     names = list(records[0]["values"]) if records else []
     meta = {EDGE_MARGIN: EDGE_MARGIN_ATTRS}
     for r in records:

@@ -7,6 +7,9 @@
    to ``training.nc``.
 3. Stop when the verified best has not improved for ``budget.patience`` rounds, when the
    simulation budget is spent, or when no new candidate is left.
+4. Final local stage on the full simulation from the verified best (:mod:`studies.refine`,
+   ``study.refine``): COBYLA under every constraint, its points stored as source ``refinement``
+   (round -1) and outside the loop's budget and rounds.
 
 Everything lives under the study's folder and in its Optuna storage, so running the same
 command again resumes where it stopped; changed result-defining settings are refused.
@@ -24,8 +27,9 @@ from sim.api import Geometry, GeometryError
 from sim.io import write_netcdf_atomic
 from studies.config import StudyConfigError, output_dir, simulation_config, storage_spec
 from studies.constraints import FAILED, Limits, margins, rank_key
-from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, design_matrix, evaluate_design, evaluate_designs,
+from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, STATUS_NAMES, design_matrix, evaluate_design, evaluate_designs,
                               points_dataset, simulate_point, table_from_file, table_to_file)
+from studies.refine import SOURCE as REFINEMENT, local_refine
 from studies.search import (complete_trials, finished_study, make_sampler, make_storage, open_study, persist_study,
                             run_trials, trial_margins)
 from studies.space import DesignSpace
@@ -33,7 +37,8 @@ from surrogate import GPSettings, GPSurrogate, load_surrogates, save_surrogates,
 
 CONVERGED = "converged"  # surrogate of the convergence label: +1 converged, -1 not (Rasmussen & Williams 6.5)
 # study keys that do not change results: a study may be resumed with other values
-RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name")
+RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name", "refine")
+REFINEMENT_ROUND = -1    # ``round`` of the final local stage's points
 
 
 @dataclass
@@ -93,6 +98,8 @@ class DesignSearch:
         self._bearing = OmegaConf.to_container(self.base_cfg.bearing, resolve=True)
         self._material = OmegaConf.to_container(self.base_cfg.material, resolve=True)
         self._n_slices = int(self.base_cfg.solver.n_slices)
+        self.local = None        # studies.refine.LocalResult of the final local stage, once run
+        self._refined = None     # the local stage's points, kept apart from the loop's (training.nc holds both)
 
     # ------------------------------------------------------------------ references and limits
     def run_references(self):
@@ -137,6 +144,9 @@ class DesignSearch:
         return ds
 
     def save_training(self, ds):
+        """Write the loop's points ``ds`` and the local stage's (:meth:`refine`) to training.nc."""
+        if self._refined is not None and self._refined.sizes["design"]:
+            ds = xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")
         write_netcdf_atomic(table_to_file(ds, self.base_cfg.load), self.training_path)
 
     def simulate(self, X, source, round_index):
@@ -150,7 +160,9 @@ class DesignSearch:
         ds = self.load_training()
         if ds is not None:
             self.log(f"resuming from {self.training_path}: {ds.sizes['design']} simulations")
-            return ds
+            local = ds.source.values == REFINEMENT
+            self._refined = ds.isel(design=np.flatnonzero(local))
+            return ds.isel(design=np.flatnonzero(~local))
         d = self.study.initial_design
         t0 = time.perf_counter()
         X = self.space.sample(int(d.n), str(d.method), int(self.study.seed))
@@ -293,6 +305,48 @@ class DesignSearch:
                 seen.append(u)
         return np.array(chosen).reshape(len(chosen), len(self.space.names))
 
+    # ------------------------------------------------------------------ final local stage
+    def refine(self, ds):
+        """Local stage on the full simulation from the verified best of ``ds`` (the loop's points):
+        returns all points (loop and local stage) and sets :attr:`local`.
+
+        Each point is looked up among the stored ones before it is simulated (a resumed stage
+        replays COBYLA's sequence from the same start), and training.nc is rewritten after each.
+        """
+        r = self.study.refine
+        n_max = int(r.max_simulations)
+        if self._refined is None:
+            self._refined = ds.isel(design=[])
+        if n_max == 0:
+            return ds
+        i, _ = self.best(ds)
+        span = self.space.high - self.space.low
+
+        def stored(x):
+            for part in (ds, self._refined):
+                hit = np.flatnonzero(np.all(design_matrix(part, self.space) == x, axis=1))
+                if hit.size:
+                    return part.isel(design=[int(hit[0])])
+            return None
+
+        def evaluate(u):
+            x = self.space.low + u * span
+            p = stored(x)
+            if p is None:
+                p = self.simulate(x[None, :], REFINEMENT, REFINEMENT_ROUND)
+                self._refined = xr.concat([self._refined, p], dim="design", combine_attrs="override", data_vars="all")
+                self.save_training(ds)
+                done = self._refined.sizes["design"]
+                self.log(f"local stage: simulation {done} of at most {n_max - 1}: "
+                         f"{self.objective} {float(p[self.objective].values[0]):.6g} ({STATUS_NAMES[int(p.status.values[0])]})")
+            ok = int(p.status.values[0]) == STATUS["ok"]
+            return (float(p[self.objective].values[0]) if ok else np.nan), self.point_margins(p)[0]
+
+        u0 = self.space.unit(design_matrix(ds, self.space)[i])[0]
+        self.local = local_refine(evaluate, u0, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
+                                  float(r.active_tolerance))
+        return xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")
+
     # ------------------------------------------------------------------ the loop
     def run(self):
         """Run (or resume) the whole search; returns the training dataset and the stop reason."""
@@ -329,4 +383,11 @@ class DesignSearch:
                 break
             r += 1
         self.log(f"stopped: {reason}")
+        ds = self.refine(ds)
+        if self.local is not None:
+            L = self.local
+            self.log(f"local stage: {L.evaluations} points, {self.objective} {L.start_value:.6g} -> {L.value:.6g} "
+                     f"({'feasible' if L.feasible else 'infeasible'}); active constraints: "
+                     f"{', '.join(L.active_constraints) or 'none'}; active bounds: "
+                     f"{', '.join(f'{self.space.names[k]} {side}' for k, side in L.active_bounds) or 'none'}")
         return ds, reason

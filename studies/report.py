@@ -151,6 +151,30 @@ def cv_table(cv):
     return "\n".join(lines)
 
 
+def local_stage_text(search):
+    """What the final local stage (studies.refine) found, in words: start, end, active constraints
+    and active search bounds ('' when the stage did not run)."""
+    L = search.local
+    if L is None:
+        return ""
+    s = search.study
+    names = search.space.names
+    lines = [f"Final local stage (COBYLA on the full simulation from the loop's verified best, {L.evaluations} "
+             f"points incl. the start; {L.message.strip()}): {search.objective} {L.start_value:.6g} -> {L.value:.6g} "
+             f"({100.0 * (L.value / L.start_value - 1.0):+.2f} %), {'feasible' if L.feasible else 'INFEASIBLE'}."]
+    lines.append("Active constraints (margin within refine.active_tolerance of its limit): "
+                 + (", ".join(L.active_constraints) or "none") + ".")
+    if L.active_bounds:
+        parts = [f"{names[k]} at its {side} bound {float(s.bounds[names[k]][0 if side == 'low' else 1]):g}"
+                 for k, side in L.active_bounds]
+        lines.append("The optimum sits on search bounds: " + "; ".join(parts) + ". These bounds are study.bounds, "
+                     "a search range chosen in conf/study (an engineering choice, not a physical limit): the "
+                     "optimum is there or beyond, and widening the range may lower the objective further.")
+    else:
+        lines.append("No search bound is active: the optimum is inside study.bounds.")
+    return " ".join(lines)
+
+
 def write_report(search, ds, reason):
     """Write the report files of a finished search; returns the report text (markdown)."""
     out = search.out
@@ -174,6 +198,7 @@ def write_report(search, ds, reason):
     n_by = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
     feasible = "feasible" if key[0] == 0 else f"NO FEASIBLE DESIGN FOUND (least violation {key[1]:.4g})"
     params = ", ".join(f"{k} = {bearing[k]:.4g}" for k in (*search.space.names, "ratings_alpha"))
+    local = local_stage_text(search)
     text = "\n".join([
         f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}",
         "",
@@ -187,6 +212,7 @@ def write_report(search, ds, reason):
         "",
         f"Verified best ({feasible}), simulation #{i}: {params}",
         "",
+        *([local, ""] if local else []),
         comparison_table(search, rows, attrs),
         "",
         f"Surrogate cross-validation ({s.surrogate.cv_folds}-fold, {100 * s.surrogate.interval:g} % intervals, "

@@ -22,7 +22,8 @@ from studies.search import make_sampler, open_study, run_trials, trial_margins
 
 TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
         "study.budget.max_simulations=12", "study.budget.trials_per_round=25", "study.budget.verify_per_round=2",
-        "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0", "study.sampler_settings.n_startup_trials=10"]
+        "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0", "study.sampler_settings.n_startup_trials=10",
+        "study.refine.max_simulations=0"]
 
 
 def search_in(folder, *extra):
@@ -118,3 +119,27 @@ def test_impossible_geometry_is_a_recorded_infeasible_trial(tmp_path):
     for t in trials:
         assert t.user_attrs["status"] == "geometry_error" and "aPk" in t.user_attrs["message"]
         assert trial_margins(t)[0] == FAILED and np.isfinite(t.value)
+
+
+def test_local_stage_refines_the_verified_best_and_resumes(tmp_path):
+    """study.refine (studies.refine): after the loop, COBYLA on the full simulation from the
+    verified best. Its points are stored as source 'refinement', round -1, outside the loop's
+    budget; the best after it ranks no worse than the loop's best (the start is one of its
+    points); the report names the active constraints and bounds; a rerun replays the stored
+    points and simulates nothing new (same points, bit for bit)."""
+    extra = ["study.refine.max_simulations=8", "study.refine.initial_step=0.1"]
+    search = search_in(tmp_path, *extra)
+    ds, reason = search.run()
+    local = ds.source.values == "refinement"
+    assert 1 <= local.sum() <= 7 and np.all(ds["round"].values[local] == -1)
+    assert (~local).sum() == 12                      # the loop's budget is untouched
+    loop_best = search.best(ds.isel(design=np.flatnonzero(~local)))[1]
+    assert search.best(ds)[1] <= loop_best
+    L = search.local
+    assert L is not None and L.evaluations == local.sum() + 1
+    text = write_report(search, ds, reason)
+    assert "Final local stage" in text and "Active constraints" in text
+    again = search_in(tmp_path, *extra)
+    ds2, _ = again.run()
+    xr.testing.assert_identical(ds2, ds)
+    assert again.local.value == L.value

@@ -44,6 +44,9 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("surrogate.interval", 1.5, ["study.surrogate.interval", "1.5", "(0, 1)"]),
     ("storage", "outputs/x.db", ["study.storage", "outputs/x.db", "journal:"]),
     ("bearing", "tsrb_missing", ["study.bearing", "tsrb_missing", "tsrb_pinion"]),
+    ("refine.max_simulations", -1, ["study.refine.max_simulations", "-1", ">= 0"]),
+    ("refine.initial_step", 0.0, ["study.refine.initial_step", "0.0", "(0, 1]"]),
+    ("refine.final_step", 0.5, ["study.refine.final_step", "0.5", "<= refine.initial_step"]),
 ])
 def test_bad_values_fail_at_start_naming_key_value_and_range(pinion, key, value, words):
     study = pinion.copy()

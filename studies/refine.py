@@ -1,0 +1,105 @@
+"""Final local stage of a design search on the full simulation (issue 16, item 2).
+
+The surrogate loop ends at the best design it has verified, which need not be a local optimum:
+the feasible region of the pinion study is a thin sliver and the surrogates are least sure near
+its edges, where the optimum sits. This stage starts at the verified best and runs a
+derivative-free trust-region method with constraints on the full simulation: COBYLA (Powell
+1994, "A direct search optimization method that models the objective and constraint functions
+by linear interpolation"; scipy's implementation, PRIMA, Zhang 2023), on the inputs scaled to
+the unit cube, the study bounds as bounds and every normalised constraint margin
+(:func:`studies.constraints.margins`, <= 0 feasible) as a constraint. Each simulation is added
+to ``training.nc`` the moment it finishes (source ``refinement``), and a rerun replays COBYLA's
+deterministic sequence from the same start against those stored points, so an interrupted
+stage resumes without repeating a simulation.
+
+The reported design is the best evaluated point by :func:`studies.constraints.rank_key`
+(feasible by objective first), and with it the constraints and the search bounds that are
+active there: a margin within ``active_tolerance`` of 0, an input within ``active_tolerance``
+of a bound (unit scale). A bound of ``study.bounds`` is a search range the engineer chose, not
+physics (conf/study/*.yaml says why each is where it is): an optimum on one says that the
+optimum lies at or beyond it.
+"""
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import minimize
+
+from studies.constraints import rank_key
+
+SOURCE = "refinement"      # the ``source`` of this stage's points in training.nc
+
+
+@dataclass
+class LocalResult:
+    """Outcome of :func:`local_refine` (unit-cube coordinates)."""
+
+    u: np.ndarray                   # best evaluated point
+    value: float                    # its objective
+    margins: np.ndarray             # its constraint margins (<= 0 feasible)
+    start_value: float              # objective at the start point
+    evaluations: int                # distinct points evaluated (the start included)
+    message: str                    # the optimiser's stop message
+    active_constraints: list = field(default_factory=list)   # names of margins within tolerance of 0
+    active_bounds: list = field(default_factory=list)        # (index, "low" | "high")
+
+    @property
+    def feasible(self):
+        return bool(np.all(self.margins <= 0.0))
+
+
+def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step, active_tolerance):
+    """COBYLA from ``u0`` on a black box; see the module docstring.
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(u) -> (objective, margins)`` for u in the unit cube; the objective is NaN
+        where the point has no result (its margins then say why, e.g. the simulation margin).
+    u0 : array_like, shape (d,)
+        Start point in [0, 1]^d.
+    names : sequence of str
+        Names of the margins, in order.
+    max_evaluations : int
+        Largest number of distinct points evaluated, the start included.
+    initial_step, final_step : float
+        COBYLA's initial and final trust-region radius (rhobeg, tol) in unit coordinates.
+    active_tolerance : float
+        A margin (normalised, [1]) or a distance to a bound (unit scale) up to this is active.
+
+    Returns
+    -------
+    LocalResult
+    """
+    u0 = np.clip(np.asarray(u0, dtype=float), 0.0, 1.0)
+    seen = {}
+
+    def at(u):
+        u = np.clip(np.asarray(u, dtype=float), 0.0, 1.0)
+        key = u.tobytes()
+        if key not in seen:
+            seen[key] = (u.copy(), *evaluate(u))
+        return seen[key]
+
+    _, f0, _ = at(u0)
+    scale = abs(f0) if np.isfinite(f0) and f0 != 0.0 else 1.0
+
+    def objective(u):
+        _, f, _ = at(u)
+        # a point without result is worse than any with one: COBYLA needs a finite number, and
+        # the margins returned with it (simulation margin > 0) keep it infeasible as well
+        finite = [v for _, v, _ in seen.values() if np.isfinite(v)]
+        return f / scale if np.isfinite(f) else 2.0 * max(map(abs, finite or [scale])) / scale
+
+    def constraints(u):
+        return -np.asarray(at(u)[2], dtype=float)        # scipy: >= 0 feasible
+
+    d = u0.size
+    res = minimize(objective, u0, method="COBYLA", bounds=[(0.0, 1.0)] * d,
+                   constraints=[{"type": "ineq", "fun": constraints}],
+                   options={"rhobeg": initial_step, "tol": final_step, "maxiter": max(max_evaluations, d + 2)})
+    best_u, best_f, best_m = min(seen.values(), key=lambda e: rank_key(e[1], e[2]))
+    active = [str(n) for n, m in zip(names, best_m) if abs(m) <= active_tolerance]
+    bounds = [(k, "low") for k in range(d) if best_u[k] <= active_tolerance] + \
+             [(k, "high") for k in range(d) if best_u[k] >= 1.0 - active_tolerance]
+    return LocalResult(best_u, float(best_f), np.asarray(best_m, dtype=float), float(f0), len(seen), str(res.message),
+                       active, sorted(bounds))

@@ -1,0 +1,54 @@
+"""The final local stage (studies.refine, issue 16 item 2) on closed-form problems whose
+constrained optimum, active constraints and active bounds are known exactly."""
+import numpy as np
+import pytest
+
+from studies.refine import local_refine
+
+SETTINGS = dict(max_evaluations=200, initial_step=0.1, final_step=1e-6, active_tolerance=1e-4)
+
+
+def test_optimum_on_a_curved_constraint():
+    """min -(u0 + u1) subject to u0^2 + u1^2 <= 1/2: the optimum is (1/2, 1/2) with f = -1 and the
+    constraint active (Lagrange: the gradient of f is parallel to the circle's normal there).
+    COBYLA stops at trust radius 1e-6: the point within 1e-4 (linear models of a curved
+    boundary converge to it at the order of the radius), the constraint within 1e-4."""
+    r = local_refine(lambda u: (-(u[0] + u[1]), np.array([(u[0] ** 2 + u[1] ** 2) / 0.5 - 1.0, -1.0])),
+                     [0.1, 0.2], ["circle", "slack"], **SETTINGS)
+    np.testing.assert_allclose(r.u, [0.5, 0.5], atol=1e-4)
+    assert r.value == pytest.approx(-1.0, abs=1e-4)
+    assert r.feasible and r.active_constraints == ["circle"] and r.active_bounds == []
+    assert r.start_value == pytest.approx(-0.3) and r.evaluations <= SETTINGS["max_evaluations"]
+
+
+def test_optimum_on_a_search_bound_is_reported_as_such():
+    """min u0 + (u1 - 0.3)^2 with no binding constraint: the optimum (0, 0.3) lies on the lower
+    bound of input 0, which the result names; input 1 is interior."""
+    r = local_refine(lambda u: (u[0] + (u[1] - 0.3) ** 2, np.array([-1.0])), [0.7, 0.9], ["slack"], **SETTINGS)
+    np.testing.assert_allclose(r.u, [0.0, 0.3], atol=1e-3)
+    assert r.active_bounds == [(0, "low")] and r.active_constraints == []
+
+
+def test_points_without_result_are_avoided_and_never_reported():
+    """Above u0 = 0.8 the 'simulation' fails (NaN objective, margin +1). min -u0 - u1 subject to
+    u0 + u1 <= 1.5 with the optimum on that line: every evaluated failed point is kept out of
+    the result, which is feasible and on the constraint; each point is evaluated once."""
+    calls = []
+
+    def evaluate(u):
+        calls.append(u.tobytes())
+        if u[0] > 0.8:
+            return np.nan, np.array([1.0, 0.0])
+        return -(u[0] + u[1]), np.array([0.0, (u[0] + u[1]) / 1.5 - 1.0])
+
+    r = local_refine(evaluate, [0.2, 0.2], ["simulation", "sum"], **SETTINGS)
+    assert r.feasible and np.isfinite(r.value)
+    assert r.value == pytest.approx(-1.5, abs=1e-4) and "sum" in r.active_constraints
+    assert len(calls) == len(set(calls)) == r.evaluations
+
+
+def test_budget_limits_the_evaluations():
+    """max_evaluations caps the distinct points (the start included)."""
+    r = local_refine(lambda u: (float(np.sum((u - 0.37) ** 2)), np.array([-1.0])), [0.9, 0.9, 0.9], ["slack"],
+                     max_evaluations=12, initial_step=0.1, final_step=1e-9, active_tolerance=1e-4)
+    assert r.evaluations <= 12
