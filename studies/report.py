@@ -57,9 +57,26 @@ def cross_validation(search, ds):
             for q, (X, y, log, units) in search.training_sets(ds).items() if len(y) >= int(s.cv_folds)}
 
 
+def load_case_label(study):
+    """The study's load case in words for titles: 'Fa 35 kN, Fr 0 kN, 1100 rpm, tilt 0 deg, 50 degC'."""
+    L = study.load
+    return (f"Fa {float(L.Fa) / 1e3:g} kN, Fr {float(L.Fr) / 1e3:g} kN, {float(L.speed):g} rpm, "
+            f"tilt {float(L.tilt):g} deg, oil {float(L.oil_temperature):g} degC")
+
+
+def ratio_in_words(name, value, reference_label, reference_value):
+    """'torque 4.6 % below the reference TRB trb_31313 (ratio 0.954)', or '' without both values."""
+    if not (np.isfinite(value) and np.isfinite(reference_value)) or reference_value == 0.0:
+        return ""
+    r = value / reference_value
+    side = "below" if r < 1.0 else "above"
+    return f"{name} {abs(100.0 * (r - 1.0)):.1f} % {side} the {reference_label} (ratio {r:.3f})"
+
+
 # ---------------------------------------------------------------------------- plots
 def plot_history(search, vds, refs, path):
-    """Objective of every full simulation in run order; running best feasible; references."""
+    """Objective of every full simulation in run order; running best feasible; references (an
+    infeasible TSRB reference, e.g. the thesis design under the study's constraints, is marked)."""
     obj = search.objective
     y = vds[obj].values
     feas = vds.feasible.values
@@ -71,19 +88,21 @@ def plot_history(search, vds, refs, path):
     ax.step(n[np.isfinite(best)], best[np.isfinite(best)], where="post", color="C3", label="verified best")
     n0 = int(np.sum(vds.source.values == "initial"))
     ax.axvline(n0 + 0.5, color="k", lw=0.8, ls=":", label="end of initial design")
-    for i, (label, record, _) in enumerate(refs):
+    for i, (label, record, m) in enumerate(refs):
         if np.isfinite(record["values"][obj]):
-            ax.axhline(record["values"][obj], color=f"C{i + 1}", ls="--", lw=1, label=label)
+            infeasible = m is not None and violation(m) > 0.0
+            ax.axhline(record["values"][obj], color=f"C{i + 1}", ls=":" if infeasible else "--", lw=1,
+                       label=f"{label} (INFEASIBLE here)" if infeasible else label)
     ax.set_xlabel("full simulation")
     ax.set_ylabel(f"{obj} [{vds[obj].attrs.get('units', '')}]")
-    ax.set_title(f"{search.study.name}: optimisation history")
+    ax.set_title(f"{search.study.name}: optimisation history\n{load_case_label(search.study)}", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
 
-def plot_parity(cv, units, path):
+def plot_parity(cv, units, path, load_label):
     """Out-of-fold prediction against simulation, with the prediction intervals; ``units`` by name."""
     names = [q for q in cv if q != "converged"]
     fig, axes = plt.subplots(1, len(names), figsize=(3.4 * len(names), 3.4), squeeze=False)
@@ -95,14 +114,14 @@ def plot_parity(cv, units, path):
         ax.set_xlabel(f"simulated {q} [{units.get(q, '1')}]")
         ax.set_ylabel(f"predicted {q} [{units.get(q, '1')}]")
         ax.set_title(f"R2 {c.r2:.3f}, cover {c.coverage:.2f}\nRMSE {c.rmse:.3g}", fontsize=8)
-    fig.suptitle(f"surrogate parity, {int(round(100 * next(iter(cv.values())).level))} % intervals (k-fold CV)",
-                 fontsize=9)
+    fig.suptitle(f"surrogate parity, {int(round(100 * next(iter(cv.values())).level))} % intervals (k-fold CV); "
+                 f"{load_label}", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
     plt.close(fig)
 
 
-def plot_pressure(datasets, path):
+def plot_pressure(datasets, path, load_label):
     """Pressure along the most loaded roller (outer, inner race) of the labelled results."""
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.6), sharey=True)
     for ax, race in zip(axes, ("outer", "inner")):
@@ -111,7 +130,7 @@ def plot_pressure(datasets, path):
                 continue
             p = ds.pressure.isel(design=0, case=0).sel(race=race)
             ax.plot(ds.x_slice.values, p.values, marker=".", label=label)
-        ax.set_title(f"{race} race")
+        ax.set_title(f"{race} race; {load_label}", fontsize=8)
         ax.set_xlabel("x from the large end [mm]")
     axes[0].set_ylabel("pressure [MPa]")
     axes[0].legend(fontsize=7)
@@ -191,14 +210,19 @@ def write_report(search, ds, reason):
     attrs = {q: ds[q].attrs for q in ds.data_vars}
     cv = cross_validation(search, ds)
     plot_history(search, vds, rows[1:], out / "history.png")
-    plot_parity(cv, {q: a.get("units", "1") for q, a in attrs.items()}, out / "parity.png")
+    label = load_case_label(search.study)
+    plot_parity(cv, {q: a.get("units", "1") for q, a in attrs.items()}, out / "parity.png", label)
     plot_pressure([("verified best", best_ds)] + [(f"{r.label} {r.bearing}", r.ds) for r in search.references.values()],
-                  out / "pressure.png")
+                  out / "pressure.png", label)
     s = search.study
     n_by = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
     feasible = "feasible" if key[0] == 0 else f"NO FEASIBLE DESIGN FOUND (least violation {key[1]:.4g})"
     params = ", ".join(f"{k} = {bearing[k]:.4g}" for k in (*search.space.names, "ratings_alpha"))
     local = local_stage_text(search)
+    obj = search.objective
+    words = [ratio_in_words(obj, best_record["values"].get(obj, np.nan), f"{r.label} {r.bearing}",
+                            r.record["values"].get(obj, np.nan)) for r in search.references.values()]
+    words = "; ".join(w for w in words if w)
     text = "\n".join([
         f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}",
         "",
@@ -212,6 +236,7 @@ def write_report(search, ds, reason):
         "",
         f"Verified best ({feasible}), simulation #{i}: {params}",
         "",
+        *([f"The verified best has its {words}.", ""] if words else []),
         *([local, ""] if local else []),
         comparison_table(search, rows, attrs),
         "",

@@ -17,7 +17,7 @@ from studies.config import compose
 from studies.constraints import FAILED
 from studies.evaluate import STATUS, table_from_file
 from studies.loop import DesignSearch
-from studies.report import write_report
+from studies.report import ratio_in_words, write_report
 from studies.search import make_sampler, open_study, run_trials, trial_margins
 
 TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
@@ -70,6 +70,10 @@ def test_report_writes_verified_results_and_plots(finished):
     best = xr.load_dataset(search.out / "best_design.nc")
     assert float(best.PCR.values[0]) == pytest.approx(float(ds.PCR.values[i]))
     assert "reference TRB trb_31313" in text and "thesis design tsrb_pinion" in text and "| pmax |" in text
+    # the ratio to the TRB in words (issue 16 item 9), from the simulated numbers
+    trb = search.references["reference TRB"].record["values"]["pmax"]
+    r = float(best.pmax.max()) / trb
+    assert f"{abs(100 * (r - 1)):.1f} % {'below' if r < 1 else 'above'} the reference TRB trb_31313" in text
 
 
 CHECKER = Path(__file__).resolve().parents[2].parent / "shared" / "tools" / "check_result.py"
@@ -143,3 +147,9 @@ def test_local_stage_refines_the_verified_best_and_resumes(tmp_path):
     ds2, _ = again.run()
     xr.testing.assert_identical(ds2, ds)
     assert again.local.value == L.value
+
+
+def test_ratio_in_words():
+    assert ratio_in_words("torque", 90.0, "TRB x", 100.0) == "torque 10.0 % below the TRB x (ratio 0.900)"
+    assert ratio_in_words("torque", 125.0, "TRB x", 100.0) == "torque 25.0 % above the TRB x (ratio 1.250)"
+    assert ratio_in_words("torque", float("nan"), "TRB x", 100.0) == ""
