@@ -39,6 +39,10 @@ CONVERGED = "converged"  # surrogate of the convergence label: +1 converged, -1 
 # study keys that do not change results: a study may be resumed with other values
 RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name", "refine")
 REFINEMENT_ROUND = -1    # ``round`` of the final local stage's points
+# Initial-design points simulated per worker between two writes of training.nc: a kill loses at
+# most this many per worker, and joblib's per-call cost (its worker pool is reused) stays small
+# against that many simulations (50-500 ms each), engineering choice.
+INITIAL_CHUNK_PER_JOB = 4
 
 
 @dataclass
@@ -156,20 +160,37 @@ class DesignSearch:
         return points_dataset(self.space, X, records, source, round_index, self.attrs())
 
     def initial_design(self):
-        """Load the training data, or simulate the space-filling design and save it."""
+        """Load the training data, or simulate the space-filling design and save it.
+
+        The design is simulated in chunks of :data:`INITIAL_CHUNK_PER_JOB` points per worker and
+        training.nc is rewritten after each chunk, so a killed run loses at most one chunk; a
+        rerun continues with the rest of the same (seeded) sequence (issue 16 item 8).
+        """
         ds = self.load_training()
+        d = self.study.initial_design
+        X = self.space.sample(int(d.n), str(d.method), int(self.study.seed))
         if ds is not None:
             self.log(f"resuming from {self.training_path}: {ds.sizes['design']} simulations")
             local = ds.source.values == REFINEMENT
             self._refined = ds.isel(design=np.flatnonzero(local))
-            return ds.isel(design=np.flatnonzero(~local))
-        d = self.study.initial_design
+            ds = ds.isel(design=np.flatnonzero(~local))
+            done = int(np.sum(ds.source.values == "initial"))
+            if done >= len(X):
+                return ds
+            if not np.array_equal(design_matrix(ds.isel(design=slice(0, done)), self.space), X[:done]):
+                raise StudyConfigError(f"{self.training_path} holds an initial design that is not this study's "
+                                       f"sequence; use another study.name or delete {self.out} to start afresh")
+        else:
+            done = 0
         t0 = time.perf_counter()
-        X = self.space.sample(int(d.n), str(d.method), int(self.study.seed))
-        ds = self.simulate(X, "initial", 0)
-        self.save_training(ds)
+        chunk = INITIAL_CHUNK_PER_JOB * int(self.study.n_jobs)
+        for start in range(done, len(X), chunk):
+            part = self.simulate(X[start:start + chunk], "initial", 0)
+            ds = part if ds is None else xr.concat([ds, part], dim="design", combine_attrs="override", data_vars="all")
+            self.save_training(ds)
+            self.log(f"initial design: {ds.sizes['design']} of {len(X)} simulated")
         counts = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
-        self.log(f"initial design: {len(X)} {d.method} simulations in {time.perf_counter() - t0:.1f} s {counts}")
+        self.log(f"initial design: {len(X) - done} {d.method} simulations in {time.perf_counter() - t0:.1f} s {counts}")
         return ds
 
     # ------------------------------------------------------------------ judging simulated points

@@ -153,3 +153,34 @@ def test_ratio_in_words():
     assert ratio_in_words("torque", 90.0, "TRB x", 100.0) == "torque 10.0 % below the TRB x (ratio 0.900)"
     assert ratio_in_words("torque", 125.0, "TRB x", 100.0) == "torque 25.0 % above the TRB x (ratio 1.250)"
     assert ratio_in_words("torque", float("nan"), "TRB x", 100.0) == ""
+
+
+def test_initial_design_resumes_point_by_point(finished, tmp_path):
+    """Issue 16 item 8: a run killed during the space-filling design keeps its finished chunks
+    (INITIAL_CHUNK_PER_JOB points per worker, here 4 with one worker) in training.nc; the rerun
+    simulates only the rest of the same Sobol sequence and ends with the uninterrupted run's
+    initial points, bit for bit."""
+    _, reference, _ = finished
+    search = search_in(tmp_path)
+    calls = []
+    original = search.simulate
+
+    def dies_on_second_chunk(X, source, round_index):
+        calls.append(len(X))
+        if len(calls) == 2:
+            raise KeyboardInterrupt("killed")
+        return original(X, source, round_index)
+
+    search.simulate = dies_on_second_chunk
+    with pytest.raises(KeyboardInterrupt):
+        search.run()
+    stored = table_from_file(xr.load_dataset(tmp_path / "training.nc"))
+    assert calls == [4, 4] and stored.sizes["design"] == 4
+    resumed = search_in(tmp_path)
+    simulated = []
+    original2 = resumed.simulate
+    resumed.simulate = lambda X, s, r: simulated.append((s, len(X))) or original2(X, s, r)
+    ds = resumed.initial_design()
+    assert simulated == [("initial", 4)]
+    for name in ("PCR", "kappa", "aP", "aPk", "alpha", "pmax", "status"):
+        np.testing.assert_array_equal(ds[name].values, reference[name].values[:8])
