@@ -7,10 +7,9 @@ import time
 
 import numpy as np
 import xarray as xr
-from joblib import Parallel, delayed
 
 from sim.io import CASE_VARIABLES, case_coords, utc_now
-from sim.api import GeometryError, InputError, OperatingPoint, simulate
+from sim.api import GeometryError, InputError, OperatingPoint, simulate, worker_pool
 
 # CF flags of the ``status`` variable
 STATUS = {"ok": 0, "not_converged": 1, "geometry_error": 2, "failed": 3}
@@ -120,10 +119,13 @@ def evaluate_design(base_cfg, values, quantities):
 
 
 def evaluate_designs(base_cfg, points, quantities, n_jobs):
-    """:func:`evaluate_design` for a list of design-parameter dicts, in ``n_jobs`` processes (joblib)."""
+    """:func:`evaluate_design` for a list of design-parameter dicts, in order, in ``n_jobs``
+    processes that die with this one (:func:`sim.api.worker_pool`: a killed study leaves no
+    simulation running)."""
     if n_jobs == 1 or len(points) <= 1:
         return [evaluate_design(base_cfg, p, quantities) for p in points]
-    return Parallel(n_jobs=n_jobs)(delayed(evaluate_design)(base_cfg, p, quantities) for p in points)
+    with worker_pool(min(n_jobs, len(points))) as pool:
+        return list(pool.map(evaluate_design, [base_cfg] * len(points), points, [quantities] * len(points)))
 
 
 def points_dataset(space, X, records, source, round_index, attrs):

@@ -40,7 +40,7 @@ CONVERGED = "converged"  # surrogate of the convergence label: +1 converged, -1 
 RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name", "refine")
 REFINEMENT_ROUND = -1    # ``round`` of the final local stage's points
 # Initial-design points simulated per worker between two writes of training.nc: a kill loses at
-# most this many per worker, and joblib's per-call cost (its worker pool is reused) stays small
+# most this many per worker, and the per-call cost of the pool (forked workers) stays small
 # against that many simulations (50-500 ms each), engineering choice.
 INITIAL_CHUNK_PER_JOB = 4
 
