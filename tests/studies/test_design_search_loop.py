@@ -141,6 +141,7 @@ def test_local_stage_refines_the_verified_best_and_resumes(tmp_path):
     assert search.best(ds)[1] <= loop_best
     L = search.local
     assert L is not None and L.evaluations == local.sum() + 1
+    assert "simulation" not in L.active_constraints      # the simulation margin is no constraint
     text = write_report(search, ds, reason)
     assert "Final local stage" in text and "Active constraints" in text
     again = search_in(tmp_path, *extra)
