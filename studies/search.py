@@ -19,7 +19,7 @@ redone, identically, since the sampler seeds depend only on the trial count.
 from pathlib import Path
 
 import optuna
-from optuna.storages import JournalStorage, RDBStorage, RetryFailedTrialCallback
+from optuna.storages import JournalStorage, RDBStorage, RetryHeartbeatStaleTrialCallback
 from optuna.storages.journal import JournalFileBackend
 from optuna.trial import TrialState
 
@@ -66,7 +66,7 @@ def make_storage(spec, heartbeat=None):
     The folder of a SQLite or journal file is created. ``heartbeat`` (the study's ``workers``
     node: ``heartbeat_interval``, ``grace_period`` [s], ``max_retry``) turns on Optuna's
     heartbeat for an RDB URL: a RUNNING trial without heartbeat for ``grace_period`` is marked
-    FAIL and enqueued again (RetryFailedTrialCallback), at most ``max_retry`` times. The journal
+    FAIL and enqueued again (RetryHeartbeatStaleTrialCallback), at most ``max_retry`` times. The journal
     storage has no heartbeat in Optuna 5 (studies.workers retries its stale trials at start).
     """
     if spec.startswith("journal:"):
@@ -80,7 +80,7 @@ def make_storage(spec, heartbeat=None):
     return RDBStorage(spec, engine_kwargs={"pool_pre_ping": True},  # a server may drop idle connections
                       heartbeat_interval=int(heartbeat["heartbeat_interval"]),
                       grace_period=int(heartbeat["grace_period"]),
-                      failed_trial_callback=RetryFailedTrialCallback(max_retry=int(heartbeat["max_retry"])))
+                      heartbeat_stale_trial_callback=RetryHeartbeatStaleTrialCallback(max_retry=int(heartbeat["max_retry"])))
 
 
 def open_study(storage, name, sampler):

@@ -28,7 +28,7 @@ journal file or SQLite on one). Every full simulation is one trial of that study
   a duplicate; a design that finds no free slot is PRUNED as over budget. So no design is
   simulated twice and the number of simulated designs is exact, whatever the timing.
 - RDB storage has Optuna's heartbeat on (``study.workers``): the trial of a worker killed with
-  SIGKILL is marked FAIL after ``grace_period`` and enqueued again (RetryFailedTrialCallback),
+  SIGKILL is marked FAIL after ``grace_period`` and enqueued again (RetryHeartbeatStaleTrialCallback),
   and the retry keeps the design's claim and slot. The journal storage has no heartbeat: its
   trials left RUNNING are failed and retried when ``create`` runs again (never while workers run).
 - ``budget.patience`` of the sequential search does not apply: the workers stop when every slot
@@ -41,6 +41,7 @@ import shutil
 import socket
 import subprocess
 import sys
+import tempfile
 import time
 import warnings
 from dataclasses import asdict
@@ -50,7 +51,7 @@ import numpy as np
 import optuna
 import sqlalchemy as sa
 from optuna.samplers import PartialFixedSampler, RandomSampler
-from optuna.storages import RDBStorage, RetryFailedTrialCallback
+from optuna.storages import RDBStorage, RetryHeartbeatStaleTrialCallback
 from optuna.trial import TrialState
 
 from sim.api.cli import PROJECT_ERRORS, refused
@@ -129,8 +130,10 @@ class FileClaims:
         self.folder.mkdir(parents=True, exist_ok=True)
 
     def add(self, name, value):
-        tmp = self.folder / f".{name}.{socket.gethostname()}.{os.getpid()}"
-        tmp.write_text(str(int(value)))
+        fd, tmp = tempfile.mkstemp(prefix=f".{name}.", dir=self.folder)
+        with os.fdopen(fd, "w") as f:
+            f.write(str(int(value)))
+        tmp = Path(tmp)
         try:
             os.link(tmp, self.folder / name)
         except FileExistsError:
@@ -262,7 +265,7 @@ class Workers:
         if self.heartbeat:
             optuna.storages.fail_stale_trials(study)
         else:  # no heartbeat: a RUNNING trial here is one of a dead worker (create runs before the workers)
-            retry = RetryFailedTrialCallback(max_retry=int(s.workers.max_retry))
+            retry = RetryHeartbeatStaleTrialCallback(max_retry=int(s.workers.max_retry))
             for t in study.get_trials(deepcopy=False, states=(TrialState.RUNNING,)):
                 study.tell(t.number, state=TrialState.FAIL)
                 retry(study, next(f for f in study.get_trials(deepcopy=False) if f.number == t.number))
@@ -413,6 +416,8 @@ def main(argv=None):
     if args.workers < 1:
         return refused(f"-n/--workers = {args.workers} is outside the allowed range: an integer >= 1")
     optuna.logging.set_verbosity(optuna.logging.WARNING)
+    # heartbeat, fail_stale_trials: experimental in Optuna since 2.9, one warning per call otherwise
+    warnings.filterwarnings("ignore", category=optuna.exceptions.ExperimentalWarning)
     t0 = time.perf_counter()
 
     def log(msg):
