@@ -16,6 +16,7 @@ takes a minute or two; a worker's start-up (imports, numba cache load) is part o
 real use.
 """
 import argparse
+import os
 import platform
 import statistics
 import subprocess
@@ -57,7 +58,7 @@ def main():
     parser.add_argument("--workers", type=int, nargs="+", default=[1, 2, 4])
     parser.add_argument("--repeats", type=int, default=1)
     parser.add_argument("--storage", default="journal")
-    args = parser.parse_args()
+    args = parser.parse_intermixed_args()
     print(f"{platform.node()}, {platform.processor() or platform.machine()}, python {platform.python_version()}")
     rows = []
     for n in args.workers:
@@ -69,7 +70,8 @@ def main():
                 overrides = [*DEFAULT, *args.overrides, f"study.storage={storage}", f"study.name={name}"]
                 wall, done = one_run(overrides, n, Path(tmp))
                 walls.append(wall)
-                print(f"  {n} workers, run {r + 1}: {wall:.1f} s, {done} simulations", flush=True)
+                print(f"  {n} workers, run {r + 1}: {wall:.1f} s, {done} simulations, load average after "
+                      f"{os.getloadavg()[0]:.1f} on {os.cpu_count()} cores", flush=True)
         rows.append((n, statistics.median(walls), done))
     base = rows[0][1]
     print("\n| workers | wall [s] (median) | speed-up | simulations / min |\n| --- | --- | --- | --- |")
