@@ -169,6 +169,15 @@ def validate(study):
                                           ("://" in s["storage"] or s["storage"].startswith("journal:"))),
              "storage", s.get("storage"), "null (SQLite under outputs/), an RDB URL or journal:<path>")
     _require(_is_int(s.get("n_jobs"), 1), "n_jobs", s.get("n_jobs"), "an integer >= 1")
+    w = s.get("workers", {})
+    _require(_is_int(w.get("heartbeat_interval"), 1), "workers.heartbeat_interval", w.get("heartbeat_interval"),
+             "an integer >= 1 [s] (Optuna's RDBStorage takes whole seconds)")
+    _require(_is_int(w.get("grace_period"), 1) and w["grace_period"] > w["heartbeat_interval"],
+             "workers.grace_period", w.get("grace_period"),
+             f"an integer > workers.heartbeat_interval = {w['heartbeat_interval']} [s]")
+    _require(_is_int(w.get("max_retry"), 0), "workers.max_retry", w.get("max_retry"), "an integer >= 0")
+    _require(_is_number(w.get("poll_interval")) and w["poll_interval"] > 0, "workers.poll_interval",
+             w.get("poll_interval"), "a number > 0 [s]")
     ss = s.get("sampler_settings", {})
     _require(_is_int(ss.get("n_startup_trials"), 0), "sampler_settings.n_startup_trials",
              ss.get("n_startup_trials"), "an integer >= 0")

@@ -37,7 +37,7 @@ from surrogate import GPSettings, GPSurrogate, load_surrogates, save_surrogates,
 
 CONVERGED = "converged"  # surrogate of the convergence label: +1 converged, -1 not (Rasmussen & Williams 6.5)
 # study keys that do not change results: a study may be resumed with other values
-RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name", "refine")
+RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name", "workers", "refine")
 REFINEMENT_ROUND = -1    # ``round`` of the final local stage's points
 # Initial-design points simulated per worker between two writes of training.nc: a kill loses at
 # most this many per worker, and the per-call cost of the pool (forked workers) stays small
@@ -121,15 +121,20 @@ class DesignSearch:
         return self.references
 
     # ------------------------------------------------------------------ training data
+    def config_attrs(self):
+        """The result-defining configuration: ``study_config`` (without RESUMABLE_KEYS) and
+        ``simulation_config``, as YAML text."""
+        study = {k: v for k, v in OmegaConf.to_container(self.study, resolve=True).items() if k not in RESUMABLE_KEYS}
+        return {"study_config": OmegaConf.to_yaml(OmegaConf.create(study)),
+                "simulation_config": OmegaConf.to_yaml(self.base_cfg, resolve=True)}
+
     def attrs(self):
         """Dataset attributes: provenance of the simulation and the result-defining study config."""
-        study = {k: v for k, v in OmegaConf.to_container(self.study, resolve=True).items() if k not in RESUMABLE_KEYS}
         ref = next(iter(self.references.values())).ds
         prov = {k: ref.attrs[k] for k in ("package_version", "git_commit", "solver", "solver_settings", "sources")
                 if ref is not None and k in ref.attrs}
         return {"Conventions": "CF-1.10", "title": f"design search {self.study.name}: full simulations",
-                **prov, "study_config": OmegaConf.to_yaml(OmegaConf.create(study)),
-                "simulation_config": OmegaConf.to_yaml(self.base_cfg, resolve=True)}
+                **prov, **self.config_attrs()}
 
     @property
     def training_path(self):
@@ -308,10 +313,13 @@ class DesignSearch:
         persist_study(study, self.storage)
         return trials
 
-    def candidates(self, trials, ds, k):
+    def candidates(self, trials, ds, k, pending=None):
         """Best k trials (feasible by objective, then by violation) with possible geometry, each at
-        least ``dedup_distance`` (max-norm, unit cube) from every simulated and every chosen point."""
+        least ``dedup_distance`` (max-norm, unit cube) from every simulated, every ``pending``
+        (X of points being simulated elsewhere) and every chosen point."""
         seen = list(self.space.unit(design_matrix(ds, self.space)))
+        if pending is not None and len(pending):
+            seen.extend(self.space.unit(pending))
         tol = float(self.study.budget.dedup_distance)
         chosen = []
         for t in sorted(trials, key=lambda t: rank_key(t.value, trial_margins(t))):

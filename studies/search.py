@@ -9,7 +9,7 @@ Resuming: a study lives in its storage. :func:`run_trials` counts the COMPLETE t
 and asks only for the missing ones; the sampler is re-seeded from that count before every
 ask, so an interrupted and resumed study proposes the same points as an uninterrupted one.
 A trial left RUNNING by a killed process is marked FAIL (and so ignored by the samplers).
-One process drives a study at a time.
+One process drives a study at a time here; studies.workers runs several on one study.
 
 Studies whose trials cost milliseconds (on surrogates) run in memory and are written to the
 storage when finished (:func:`persist_study`, :func:`finished_study`): SQLite through
@@ -19,7 +19,7 @@ redone, identically, since the sampler seeds depend only on the trial count.
 from pathlib import Path
 
 import optuna
-from optuna.storages import JournalStorage
+from optuna.storages import JournalStorage, RDBStorage, RetryHeartbeatStaleTrialCallback
 from optuna.storages.journal import JournalFileBackend
 from optuna.trial import TrialState
 
@@ -59,10 +59,15 @@ def make_sampler(name, seed, settings):
     return samplers[name]()
 
 
-def make_storage(spec):
-    """Optuna storage from a spec: an RDB URL (``sqlite:///x.db``) or ``journal:<file>``.
+def make_storage(spec, heartbeat=None):
+    """Optuna storage from a spec: an RDB URL (``sqlite:///x.db``, ``postgresql+psycopg://...``) or
+    ``journal:<file>``.
 
-    The folder of a SQLite or journal file is created.
+    The folder of a SQLite or journal file is created. ``heartbeat`` (the study's ``workers``
+    node: ``heartbeat_interval``, ``grace_period`` [s], ``max_retry``) turns on Optuna's
+    heartbeat for an RDB URL: a RUNNING trial without heartbeat for ``grace_period`` is marked
+    FAIL and enqueued again (RetryHeartbeatStaleTrialCallback), at most ``max_retry`` times. The journal
+    storage has no heartbeat in Optuna 5 (studies.workers retries its stale trials at start).
     """
     if spec.startswith("journal:"):
         path = Path(spec[len("journal:"):])
@@ -70,7 +75,12 @@ def make_storage(spec):
         return JournalStorage(JournalFileBackend(str(path)))
     if spec.startswith("sqlite:///"):
         Path(spec[len("sqlite:///"):]).parent.mkdir(parents=True, exist_ok=True)
-    return spec
+    if heartbeat is None:
+        return spec
+    return RDBStorage(spec, engine_kwargs={"pool_pre_ping": True},  # a server may drop idle connections
+                      heartbeat_interval=int(heartbeat["heartbeat_interval"]),
+                      grace_period=int(heartbeat["grace_period"]),
+                      heartbeat_stale_trial_callback=RetryHeartbeatStaleTrialCallback(max_retry=int(heartbeat["max_retry"])))
 
 
 def open_study(storage, name, sampler):

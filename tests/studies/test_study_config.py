@@ -43,6 +43,8 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("constraints.pmax_max", -1, ["study.constraints.pmax_max", "-1", "'trb'"]),
     ("surrogate.interval", 1.5, ["study.surrogate.interval", "1.5", "(0, 1)"]),
     ("storage", "outputs/x.db", ["study.storage", "outputs/x.db", "journal:"]),
+    ("workers.grace_period", 5, ["study.workers.grace_period", "5", "> workers.heartbeat_interval = 10"]),
+    ("workers.heartbeat_interval", 0.5, ["study.workers.heartbeat_interval", "0.5", "integer >= 1"]),
     ("bearing", "tsrb_missing", ["study.bearing", "tsrb_missing", "tsrb_pinion"]),
     ("refine.max_simulations", -1, ["study.refine.max_simulations", "-1", ">= 0"]),
     ("refine.initial_step", 0.0, ["study.refine.initial_step", "0.0", "(0, 1]"]),
