@@ -174,9 +174,15 @@ def claim(claims, key, root, budget):
 
 # ---------------------------------------------------------------------------- results from the storage
 def known_design(trial, names):
-    """x of a trial's design (parameters, or the fixed parameters of a queued trial); None if unknown yet."""
+    """x of a trial's design (parameters, or the fixed parameters of a queued trial); None if unknown yet.
+
+    Another worker's RUNNING trial may be read while it is still being suggested, one parameter at
+    a time (seen under load: a KeyError on the second name): until it holds every name its design
+    is unknown (the design claim still keeps it from being simulated twice)."""
     params = trial.params or trial.system_attrs.get("fixed_params")
-    return np.array([float(params[n]) for n in names]) if params else None
+    if not params or any(n not in params for n in names):
+        return None
+    return np.array([float(params[n]) for n in names])
 
 
 def verified_points(search, trials, attrs=None):

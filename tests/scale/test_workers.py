@@ -187,3 +187,18 @@ def test_claims_are_exact_under_contention(backend, request, tmp_path):
     assert len(designs) == 10 and sorted({s for _, s in won}) == list(range(10))
     # a design is claimed by its own chain: each claim of it (first or a later one) sees the same slot
     assert all(len({s for j2, s in won if j2 == j}) == 1 for j in designs)
+
+
+def test_a_trial_still_being_suggested_has_no_known_design():
+    """The race of a worker reading another's RUNNING trial between two suggest_float calls."""
+    import optuna
+    from studies.workers import known_design
+
+    study = optuna.create_study()
+    trial = study.ask()
+    trial.suggest_float("PCR", 20.0, 150.0)
+    frozen = study.trials[0]
+    assert known_design(frozen, ("PCR", "aP")) is None
+    trial.suggest_float("aP", 6.0, 18.0)
+    x = known_design(study.trials[0], ("PCR", "aP"))
+    assert x is not None and x.shape == (2,)
