@@ -7,7 +7,7 @@ import numpy as np
 
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
 from sim.physics.friction import (TRACTION_LAWS, EV_FT, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
-                                  FrictionParams, WidthQuadrature, lubrication_state, roller_friction)
+                                  FrictionParams, lubrication_state, roller_friction, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.symmetry import symmetry_classes
 from sim.solvers.kinematics import KinematicsSettings, solve_kinematics, solve_kinematics_newton
@@ -47,9 +47,6 @@ class FrictionModel:
         # every value below passed the schema (sim.config_schema) in sim.api.simulation
         film = str(friction["film_thickness"])
         self.traction_kinematics = str(friction["kinematics"]) == "traction"
-        t, wt = np.polynomial.legendre.leggauss(int(friction["width_points"]))
-        tq = 0.25 * np.pi * (t + 1.0)               # nodes on (0, pi/2)
-        wq = 0.25 * np.pi * wt
         self.tolerance = float(friction["tolerance"])
         self.max_iterations = int(friction["max_iterations"])
         self.seed_tolerance_factor = float(friction["seed_tolerance_factor"])
@@ -92,7 +89,7 @@ class FrictionModel:
             film=FILM_FORMULAS[film], drag_k=np.nan, thermal=thermal, k_oil=float(lubricant.thermal_conductivity),
             k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol,
             inlet_heating=bool(friction["inlet_shear_heating"]))
-        self.quad = WidthQuadrature(tq, wq)
+        self.quad = width_quadrature(friction["width_points"])
 
     def evaluate(self, op, raw, start=None):
         """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
@@ -129,7 +126,7 @@ class FrictionModel:
         # rollers below the kinematic tolerance of the most loaded one cannot move the balances
         active = (load > self.tolerance * load.max()) & (weight > 0.0)
         shape = (Z, 2, n)
-        film = FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (self.quad.tq.shape[0],)),
+        film = FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (self.quad.wq.shape[0],)),
                          *(np.zeros(Z) for _ in range(4)))
         case = FrictionCase(frames, bearing, film, par, self.quad)
         totals = np.zeros(NEV)
