@@ -6,11 +6,11 @@ solved case: film, kinematics from the traction balance, torque and its breakdow
 import numpy as np
 
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_FT, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
-                                  FrictionParams, lubrication_state, roller_friction, width_quadrature)
+from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
+                                  FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.symmetry import symmetry_classes
-from sim.solvers.kinematics import KinematicsSettings, solve_kinematics, solve_kinematics_newton
+from sim.solvers.kinematics import KinematicsSettings, solve_friction
 
 # unit conversions of the config (SI, um) to kernel units (mm, N, s, MPa) and of results to output units
 MM_PER_M = 1e3
@@ -130,36 +130,15 @@ class FrictionModel:
                          *(np.zeros(Z) for _ in range(4)))
         case = FrictionCase(frames, bearing, film, par, self.quad)
         totals = np.zeros(NEV)
-        ev = np.zeros(NEV)
         mu_ref = max(par.mu_s, par.c_tau)
         tol_M = self.tolerance * mu_ref * float(load.max()) * bearing.rho_m
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw      # at the pitch radius
-        converged = True
-        # film from the speeds of the previous pass: rolling kinematics, then the traction solution
-        passes = 2 if self.traction_kinematics and start is None else 1
-        for film_pass in range(passes):
-            lubrication_state(wR, wc, wi, active, case)
-            if self.traction_kinematics:
-                # a pass followed by another only sets the film of the next: looser tolerance
-                loose = self.seed_tolerance_factor if film_pass < passes - 1 else 1.0
-                settings = KinematicsSettings(active, weight, loose * tol_M, loose * tol_T, self.max_iterations)
-                start_c, start_R = wc, wR.copy()
-                wc, converged = solve_kinematics_newton(wc, film_pass == 0 and start is None, wi, wR, case, settings,
-                                                        totals)
-                if not converged:   # bracketing is slower but cannot leave the bracket
-                    wR[:] = start_R
-                    wc, converged = solve_kinematics(start_c, wi, wR, case, settings, totals)
-        if not self.traction_kinematics:
-            for j in np.flatnonzero(active):
-                roller_friction(j, wR[j], wc, wi, case, ev)
-                totals += weight[j] * ev
-        # cage pocket friction on each roller, force along v' (module docstring): the friction
-        # load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
+        settings = KinematicsSettings(active, weight, tol_M, tol_T, self.max_iterations, self.traction_kinematics,
+                                      self.seed_tolerance_factor)
+        # cage pocket friction on each roller, force along v' (sim.physics.friction.cage_pocket_loads):
+        # the friction load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
         roller_loads = np.zeros((Z, 3))
-        for jj in np.flatnonzero(active):
-            roller_friction(jj, wR[jj], wc, wi, case, ev)
-            F_cage = par.drag_k * wc * wc - ev[EV_FT]
-            roller_loads[jj, 1] = par.mu_cage * F_cage * np.sign(wR[jj])
+        wc, converged = solve_friction(wc, wR, wi, start is None, case, settings, totals, roller_loads)
         wR[:] = wR[source]
         roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s

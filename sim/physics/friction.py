@@ -465,3 +465,23 @@ def roller_friction(j, wR, wc, wi, case, ev):
     Pc = par.mu_cage * abs(Fcage) * case.bearing.rho_m
     ev[EV_MU] -= Pc if wR > 0.0 else -Pc
     ev[EV_CAGE] += Pc * abs(wR)
+
+
+@kernel
+def cage_pocket_loads(wR, wc, wi, active, case, loads):
+    """Cage pocket friction force on every active roller [N] (module docstring): the force
+    mu_c F_cage sign(omega_R) along v' (``loads[j, 1]``), F_cage = F_D - F_t the tangential force
+    the cage supplies, at roller speeds wR and cage speed wc [rad/s]; the friction load the
+    quasi-static balance takes back (BearingModel.solve(op, roller_loads)). ``loads`` (Z, 3) is
+    written, zero for the inactive rollers and the other components.
+    """
+    ev = np.empty(NEV)
+    par = case.par
+    for j in range(wR.shape[0]):
+        for a in range(loads.shape[1]):
+            loads[j, a] = 0.0
+        if not active[j]:
+            continue
+        roller_friction(j, wR[j], wc, wi, case, ev)
+        F_cage = par.drag_k * wc * wc - ev[EV_FT]
+        loads[j, 1] = par.mu_cage * F_cage * np.sign(wR[j])

@@ -13,7 +13,7 @@ import numpy as np
 
 from sim._math.jit import kernel
 from sim._math.roots import root_search, root_search_step
-from sim.physics.friction import EV_MU, EV_TZ, NEV, roller_friction
+from sim.physics.friction import EV_MU, EV_TZ, NEV, cage_pocket_loads, lubrication_state, roller_friction
 
 # How the kinematics are solved (numba-supported named tuple, built by sim.api.friction_model):
 KinematicsSettings = namedtuple("KinematicsSettings", [
@@ -22,6 +22,8 @@ KinematicsSettings = namedtuple("KinematicsSettings", [
     "tol_M",        # N mm, absolute tolerance of each roller's moment balance about its axis
     "tol_T",        # N mm, absolute tolerance of the cage's z-moment balance
     "max_iter",     # int: bracket widenings, regula falsi or Newton steps before giving up
+    "traction",     # bool: speeds from the traction balance; False: the given (rolling) speeds are kept
+    "seed_factor",  # 1, tolerance factor of a solve that only sets the film of the next pass
 ])
 
 # First bracket of a roller speed: +-10 % of the start value (rolling kinematics (2.22) or the
@@ -227,3 +229,68 @@ def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals):
         for i in range(NEV):
             totals[i] = tmp[i]
     return wc, False
+
+
+@kernel
+def solve_friction(wc, wR, wi, fresh, case, settings, totals, roller_loads):
+    """Film, roller and cage speeds and cage pocket loads of one solved case, in one kernel call
+    (the orchestration of :meth:`sim.api.friction_model.FrictionModel.evaluate`).
+
+    The film (:func:`sim.physics.friction.lubrication_state`) is taken at the speeds of the
+    previous pass and fixed while the speeds are solved. ``fresh`` (wR, wc are rolling
+    kinematics): with ``settings.traction`` two passes, the first (film at rolling kinematics)
+    only sets the film and the start of the second, so it stops at ``settings.seed_factor`` times
+    the tolerances and starts from each roller's own balance; else one pass from the given
+    speeds (a previous solution). A Newton solve that fails is repeated from its start by the
+    bracketing :func:`solve_kinematics`. Without ``settings.traction`` the speeds stay as given
+    and ``totals`` sums the weighted roller evaluations.
+
+    Parameters
+    ----------
+    wc : float
+        Cage speed [rad/s], start value.
+    wR : ndarray (Z,)
+        Roller speeds [rad/s]: start values in, solution out.
+    wi : float
+        Inner-ring speed [rad/s].
+    fresh : bool
+        The start is rolling kinematics (not a previous solution).
+    case : sim.physics.friction.FrictionCase
+        ``case.film`` is written.
+    settings : KinematicsSettings
+    totals : ndarray (NEV,)
+        Bearing sums of the roller evaluation vectors at the solution (written).
+    roller_loads : ndarray (Z, 3)
+        Cage pocket loads (:func:`sim.physics.friction.cage_pocket_loads`, written).
+
+    Returns
+    -------
+    (omega_c [rad/s], converged)
+    """
+    active, weight = settings.active, settings.weight
+    passes = 2 if settings.traction and fresh else 1
+    converged = True
+    for film_pass in range(passes):
+        lubrication_state(wR, wc, wi, active, case)
+        if settings.traction:
+            loose = settings.seed_factor if film_pass < passes - 1 else 1.0
+            pass_settings = KinematicsSettings(active, weight, loose * settings.tol_M, loose * settings.tol_T,
+                                               settings.max_iter, True, settings.seed_factor)
+            start_c = wc
+            start_R = wR.copy()
+            wc, converged = solve_kinematics_newton(wc, film_pass == 0 and fresh, wi, wR, case, pass_settings,
+                                                    totals)
+            if not converged:   # bracketing is slower but cannot leave the bracket
+                wR[:] = start_R
+                wc, converged = solve_kinematics(start_c, wi, wR, case, pass_settings, totals)
+    if not settings.traction:
+        ev = np.empty(NEV)
+        for i in range(NEV):
+            totals[i] = 0.0
+        for j in range(wR.shape[0]):
+            if active[j]:
+                roller_friction(j, wR[j], wc, wi, case, ev)
+                for i in range(NEV):
+                    totals[i] += weight[j] * ev[i]
+    cage_pocket_loads(wR, wc, wi, active, case, roller_loads)
+    return wc, converged
