@@ -10,7 +10,7 @@ from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_TOUT, NC, NEV, Contac
                                   FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.symmetry import symmetry_classes
-from sim.solvers.kinematics import KinematicsSettings, solve_friction
+from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_friction
 
 # unit conversions of the config (SI, um) to kernel units (mm, N, s, MPa) and of results to output units
 MM_PER_M = 1e3
@@ -95,12 +95,14 @@ class FrictionModel:
         """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
 
         ``start``: the ``kinematics`` entry of a previous evaluation of the same case (cage and
-        roller speeds [rad/s]); the film is then taken at those speeds and one Newton solve
-        follows, instead of starting from rolling kinematics.
+        roller speeds [rad/s], the kinematic Jacobian); the film is then taken at those speeds
+        and one Newton solve follows, starting with that Jacobian, instead of starting from
+        rolling kinematics.
 
         Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
         cage speed rpm), ``friction_converged``, the cage pocket ``roller_loads`` (Z, 3) [N]
-        and ``kinematics`` (omega_c, omega_R (Z,)) [rad/s].
+        and ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s],
+        :data:`sim.solvers.kinematics.KinematicJacobian`).
         """
         g = self.geometry
         a = g.arrays
@@ -118,8 +120,9 @@ class FrictionModel:
         wi = float(angular_speed(op.speed))
         wc = float(angular_speed(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
+        jac = empty_jacobian(Z)
         if start is not None:
-            wc, wR = start[0], start[1].copy()
+            wc, wR, jac = start[0], start[1].copy(), start[2]
         load = raw["Q"].sum(axis=1)
         # the rollers one solution stands for: the classes of the quasi-static solve (sim.solvers.symmetry)
         _, weight, source = symmetry_classes(Z, float(op.Fr), float(np.radians(op.tilt)), raw["roller_loads"])
@@ -138,7 +141,7 @@ class FrictionModel:
         # cage pocket friction on each roller, force along v' (sim.physics.friction.cage_pocket_loads):
         # the friction load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
         roller_loads = np.zeros((Z, 3))
-        wc, converged = solve_friction(wc, wR, wi, start is None, case, settings, totals, roller_loads)
+        wc, converged = solve_friction(wc, wR, wi, start is None, case, settings, totals, roller_loads, jac)
         wR[:] = wR[source]
         roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
@@ -166,5 +169,5 @@ class FrictionModel:
             "lambda_ratio": lam,
             "cage_speed": wc * 30.0 / np.pi,                         # rad/s -> rpm
             "roller_loads": roller_loads,
-            "kinematics": (wc, wR.copy()),
+            "kinematics": (wc, wR.copy(), jac),
         }
