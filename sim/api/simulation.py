@@ -82,7 +82,7 @@ def solve_case(model, friction, op, output_cfg):
         # friction loads on the rollers (cage pocket) enter the load distribution; one
         # fixed-point pass: they are 1e-3 of the contact loads, so a second pass changes the
         # result below the solver tolerance
-        raw = model.solve(op, roller_loads=fr["roller_loads"])
+        raw = model.solve(op, roller_loads=fr["roller_loads"], start=raw)
         fr = friction.evaluate(op, raw, start=fr["kinematics"]) if raw["converged"] else {"friction_converged": False}
     res = case_results(model, op, raw, output_cfg)
     if not (res["converged"] and fr.pop("friction_converged")):
