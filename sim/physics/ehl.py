@@ -380,8 +380,14 @@ def _sinh_cosh(x):
 
 
 @kernel
-def eyring_maxwell_root(S, De):
-    """Root x >= 0 of De x + sinh(x) = S (:func:`eyring_maxwell_stress`): (x, converged, steps).
+def eyring_maxwell_stress(S, De):
+    """Stress of a Maxwell-Eyring film at a given strain rate, x = tau/tau_E0 [1].
+
+    Solves De x + sinh(x) = S for x >= 0: the steady strain rate gamma_dot of a Maxwell element
+    with an Eyring dashpot, gamma_dot = tau/(G t) + (tau_E0/eta) sinh(tau/tau_E0) (Johnson &
+    Tevaarwerk 1977, eq. (3) with the elastic rate over the transit time t taken as tau/(G t), the
+    approximation :func:`traction_per_speed` makes for the Maxwell fluid), divided by
+    tau_E0/eta: S = eta gamma_dot/tau_E0 (the Eyring number), De = eta/(G t) (a Deborah number).
 
     Newton from x0 = min(asinh(S), S/De), both upper bounds of the root (f(asinh S) = De x0 >= 0,
     f(S/De) = sinh(S/De) >= 0). f(x) = De x + sinh(x) - S is increasing and convex on x >= 0, so
@@ -391,6 +397,21 @@ def eyring_maxwell_root(S, De):
     with f''(xi) = sinh(xi) <= sinh(x) and e = dx + e', so sinh(x) dx^2 / f'(x) <= eps x'
     (eps = EYRING_REL_ERROR) bounds e'/x' by eps/2 to first order: x' is the root to rounding,
     one sinh/cosh evaluation before the step |dx| itself would fall below rounding.
+
+    Parameters
+    ----------
+    S : float
+        Eyring number eta gamma_dot / tau_E0 [1], >= 0.
+    De : float
+        eta / (G t) [1], >= 0 (0: purely viscous Eyring).
+
+    Returns
+    -------
+    x : float
+        tau / tau_E0 [1].
+    converged : bool
+    iterations : int
+        Newton steps taken.
     """
     if S <= 0.0:
         return 0.0, True, 0
@@ -419,38 +440,6 @@ def eyring_maxwell_root(S, De):
 
 
 @kernel
-def eyring_maxwell_stress(S, De):
-    """Stress of a Maxwell-Eyring film at a given strain rate, x = tau/tau_E0 [1].
-
-    Solves De x + sinh(x) = S for x >= 0: the steady strain rate gamma_dot of a Maxwell element
-    with an Eyring dashpot, gamma_dot = tau/(G t) + (tau_E0/eta) sinh(tau/tau_E0) (Johnson &
-    Tevaarwerk 1977, eq. (3) with the elastic rate over the transit time t taken as tau/(G t), the
-    approximation :func:`traction_per_speed` makes for the Maxwell fluid), divided by
-    tau_E0/eta: S = eta gamma_dot/tau_E0 (the Eyring number), De = eta/(G t) (a Deborah number).
-    The root is found by :func:`eyring_maxwell_root` (monotone Newton, to rounding).
-
-    Parameters
-    ----------
-    S : float
-        Eyring number eta gamma_dot / tau_E0 [1], >= 0.
-    De : float
-        eta / (G t) [1], >= 0 (0: purely viscous Eyring).
-
-    Returns
-    -------
-    x : float
-        tau / tau_E0 [1].
-    converged : bool
-    iterations : int
-    residual : float
-        |De x + sinh x - S| / max(S, 1e-300) [1].
-    """
-    x, converged, it = eyring_maxwell_root(S, De)
-    res = abs(De * x + np.sinh(x) - S) / max(S, 1e-300)
-    return x, converged, it, res
-
-
-@kernel
 def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_transit):
     """Traction stress over sliding speed of an Eyring (Maxwell-Eyring) film, tau/|v| [MPa s/mm].
 
@@ -465,7 +454,7 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
     The film stress tau_M is the Maxwell-Eyring law of Johnson & Tevaarwerk (1977, Proc. R. Soc.
     Lond. A 356, 215-236), elastic rate over the transit time t (as in traction_per_speed) plus
     the Ree-Eyring viscous rate (Eyring 1936; Evans & Johnson 1986, Proc. IMechE C 200);
-    :func:`eyring_maxwell_root` solves it. The limiting shear stress tau_L (Bair & Winer 1979,
+    :func:`eyring_maxwell_stress` solves it. The limiting shear stress tau_L (Bair & Winer 1979,
     ASME J. Lubr. Technol. 101: tau_L rising linearly with pressure) bounds it
     smoothly by tanh, the form of the project's solid part and of the issue's request.
 
@@ -511,7 +500,7 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
         tau_L = tau_L0 + c_tau * p
         De = eta_p / (G * t_transit)
         S = eta_p * v / (h * tau_E0)
-        x = eyring_maxwell_root(S, De)[0]
+        x = eyring_maxwell_stress(S, De)[0]
         r = x / S if S > 0.0 else 1.0 / (1.0 + De)      # tau_M/(tau_E0 S) = tau_M h/(eta |v|)
         tau_M = tau_E0 * x
         g += (1.0 - phi) * (eta_p / h) * r * _tanh_over_x(tau_M / tau_L)
