@@ -201,26 +201,36 @@ def run(args, cache_dir):
     print()
     print("with friction: sim.api.simulation.solve_case (load distribution, traction kinematics, friction, cage")
     print(f"pocket friction fed back into the load distribution, friction again), target {FRICTION_TARGET_MS:.0f} ms")
-    head = f"{'bearing':<15} {'case':<11} {'median ms':>10} {'min ms':>9} {'':>4}  {'torque N mm':>11} {'conv':>5}"
+    print("(wall ms; CPU ms of this thread, time.thread_time: on a shared machine the wall time swings with the")
+    print(f"other processes' load, the CPU time hardly does; load average now {os.getloadavg()[0]:.2f})")
+    head = (f"{'bearing':<15} {'case':<11} {'median ms':>10} {'min ms':>9} {'':>4}  {'torque N mm':>11} {'conv':>5}  "
+            f"{'CPU med':>8} {'CPU min':>8}")
     print(head)
     print("-" * len(head))
+    first_friction = []
     for bearing in BEARINGS:
         cfg = sim.load_config([f"bearing={bearing}", f"solver.n_slices={args.slices}"])
         model = build_model(cfg)
         friction = build_friction(cfg, model)
         for case, (Fa, Fr, speed, tilt, oil, _) in CASES.items():
             op = OperatingPoint(Fa, Fr, speed, tilt, oil)
+            t0 = time.perf_counter()
             res = solve_case(model, friction, op, cfg.output)          # warm-up (and compile)
-            times = []
+            first_friction.append((bearing, case, time.perf_counter() - t0))
+            times, cpu = [], []
             for _ in range(args.repeats):
-                t0 = time.perf_counter()
+                t0, c0 = time.perf_counter(), time.thread_time()
                 res = solve_case(model, friction, op, cfg.output)
+                cpu.append(time.thread_time() - c0)
                 times.append(time.perf_counter() - t0)
             all_converged &= res["converged"]
             med = 1e3 * statistics.median(times)
             status = "ok" if med <= FRICTION_TARGET_MS else "MISS"
             print(f"{bearing:<15} {case:<11} {med:10.3f} {1e3 * min(times):9.3f} {status:>4}  "
-                  f"{res.get('torque', float('nan')):11.1f} {str(res['converged']):>5}")
+                  f"{res.get('torque', float('nan')):11.1f} {str(res['converged']):>5}  "
+                  f"{1e3 * statistics.median(cpu):8.3f} {1e3 * min(cpu):8.3f}")
+    print("first solve_case per case (the friction kernels' compile or cache load at the first one):")
+    print("  " + ", ".join(f"{b} {c} {t:.2f} s" for b, c, t in first_friction))
     print()
     print("hard cases (thesis Fig. 6.10 tilt, Table A.6 geometry 1), 20 slices unless --slices")
     head = f"{'case':<20} {'median ms':>10} {'iter':>5} {'r.it':>5} {'evals':>5} {'cont':>4} {'conv':>5}"

@@ -125,7 +125,7 @@ class BearingModel:
         approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * APPROACH_LOG_TERM
         return np.array([approach / np.sin(g.alpha), 0.0])
 
-    def solve(self, op: OperatingPoint, roller_loads=None):
+    def solve(self, op: OperatingPoint, roller_loads=None, start=None):
         """Solve one case; returns a dict of plain arrays (kernel units) and the status.
 
         Parameters
@@ -144,6 +144,11 @@ class BearingModel:
             None means zeros. Loads on rollers the rings do not squeeze are ignored (the cage
             holds them). Unequal loads on rollers psi and -psi switch off the mirror symmetry
             (all Z rollers are solved); the ring's balance along y is not part of the model.
+        start : dict, optional
+            A converged result of ``solve`` for the same ``op`` (other roller loads): its ring
+            displacement, poses and slice loads are the start (a warm start of a few
+            iterations instead of one from rigid poses); without convergence from there the
+            case is solved from the usual start.
 
         Returns
         -------
@@ -184,11 +189,23 @@ class BearingModel:
 
         ext_case = ext.copy()
         tilt_rad = np.radians(op.tilt)  # op.tilt in degrees
-        ring = self.initial_ring(op)
         t0 = time.perf_counter()
-        converged = run(op.Fa, op.Fr, tilt_rad, ring, False)
-        iterations = reports[-1].iterations
-        steps = 1
+        converged = False
+        iterations = 0
+        steps = 0
+        if start is not None and start["converged"]:
+            ring = start["ring"].copy()
+            poses[:] = start["poses"]
+            q[:] = start["line_load"]
+            active[:] = q > 0.0
+            converged = run(op.Fa, op.Fr, tilt_rad, ring, True)
+            iterations = reports[-1].iterations
+            steps = 1
+        if not converged:
+            ring = self.initial_ring(op)
+            converged = run(op.Fa, op.Fr, tilt_rad, ring, False)
+            iterations += reports[-1].iterations
+            steps += 1
         if not converged and s.continuation_steps > 1 and (op.Fr > 0.0 or tilt_rad != 0.0 or np.any(ext_case != 0.0)):
             # continuation (Allgower & Georg 2003, Introduction to Numerical Continuation Methods,
             # ch. 1): from the axisymmetric case (Fa alone, solved with the ring under load

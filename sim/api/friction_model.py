@@ -6,11 +6,11 @@ solved case: film, kinematics from the traction balance, torque and its breakdow
 import numpy as np
 
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_FT, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
-                                  FrictionParams, WidthQuadrature, lubrication_state, roller_friction)
+from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
+                                  FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.symmetry import symmetry_classes
-from sim.solvers.kinematics import KinematicsSettings, solve_kinematics, solve_kinematics_newton
+from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_friction
 
 # unit conversions of the config (SI, um) to kernel units (mm, N, s, MPa) and of results to output units
 MM_PER_M = 1e3
@@ -47,9 +47,6 @@ class FrictionModel:
         # every value below passed the schema (sim.config_schema) in sim.api.simulation
         film = str(friction["film_thickness"])
         self.traction_kinematics = str(friction["kinematics"]) == "traction"
-        t, wt = np.polynomial.legendre.leggauss(int(friction["width_points"]))
-        tq = 0.25 * np.pi * (t + 1.0)               # nodes on (0, pi/2)
-        wq = 0.25 * np.pi * wt
         self.tolerance = float(friction["tolerance"])
         self.max_iterations = int(friction["max_iterations"])
         self.seed_tolerance_factor = float(friction["seed_tolerance_factor"])
@@ -92,18 +89,20 @@ class FrictionModel:
             film=FILM_FORMULAS[film], drag_k=np.nan, thermal=thermal, k_oil=float(lubricant.thermal_conductivity),
             k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol,
             inlet_heating=bool(friction["inlet_shear_heating"]))
-        self.quad = WidthQuadrature(tq, wq)
+        self.quad = width_quadrature(friction["width_points"])
 
     def evaluate(self, op, raw, start=None):
         """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
 
         ``start``: the ``kinematics`` entry of a previous evaluation of the same case (cage and
-        roller speeds [rad/s]); the film is then taken at those speeds and one Newton solve
-        follows, instead of starting from rolling kinematics.
+        roller speeds [rad/s], the kinematic Jacobian); the film is then taken at those speeds
+        and one Newton solve follows, starting with that Jacobian, instead of starting from
+        rolling kinematics.
 
         Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
         cage speed rpm), ``friction_converged``, the cage pocket ``roller_loads`` (Z, 3) [N]
-        and ``kinematics`` (omega_c, omega_R (Z,)) [rad/s].
+        and ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s],
+        :data:`sim.solvers.kinematics.KinematicJacobian`).
         """
         g = self.geometry
         a = g.arrays
@@ -121,48 +120,28 @@ class FrictionModel:
         wi = float(angular_speed(op.speed))
         wc = float(angular_speed(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
+        jac = empty_jacobian(Z)
         if start is not None:
-            wc, wR = start[0], start[1].copy()
+            wc, wR, jac = start[0], start[1].copy(), start[2]
         load = raw["Q"].sum(axis=1)
         # the rollers one solution stands for: the classes of the quasi-static solve (sim.solvers.symmetry)
         _, weight, source = symmetry_classes(Z, float(op.Fr), float(np.radians(op.tilt)), raw["roller_loads"])
         # rollers below the kinematic tolerance of the most loaded one cannot move the balances
         active = (load > self.tolerance * load.max()) & (weight > 0.0)
         shape = (Z, 2, n)
-        film = FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (self.quad.tq.shape[0],)),
+        film = FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (self.quad.wq.shape[0],)),
                          *(np.zeros(Z) for _ in range(4)))
         case = FrictionCase(frames, bearing, film, par, self.quad)
         totals = np.zeros(NEV)
-        ev = np.zeros(NEV)
         mu_ref = max(par.mu_s, par.c_tau)
         tol_M = self.tolerance * mu_ref * float(load.max()) * bearing.rho_m
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw      # at the pitch radius
-        converged = True
-        # film from the speeds of the previous pass: rolling kinematics, then the traction solution
-        passes = 2 if self.traction_kinematics and start is None else 1
-        for film_pass in range(passes):
-            lubrication_state(wR, wc, wi, active, case)
-            if self.traction_kinematics:
-                # a pass followed by another only sets the film of the next: looser tolerance
-                loose = self.seed_tolerance_factor if film_pass < passes - 1 else 1.0
-                settings = KinematicsSettings(active, weight, loose * tol_M, loose * tol_T, self.max_iterations)
-                start_c, start_R = wc, wR.copy()
-                wc, converged = solve_kinematics_newton(wc, film_pass == 0 and start is None, wi, wR, case, settings,
-                                                        totals)
-                if not converged:   # bracketing is slower but cannot leave the bracket
-                    wR[:] = start_R
-                    wc, converged = solve_kinematics(start_c, wi, wR, case, settings, totals)
-        if not self.traction_kinematics:
-            for j in np.flatnonzero(active):
-                roller_friction(j, wR[j], wc, wi, case, ev)
-                totals += weight[j] * ev
-        # cage pocket friction on each roller, force along v' (module docstring): the friction
-        # load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
+        settings = KinematicsSettings(active, weight, tol_M, tol_T, self.max_iterations, self.traction_kinematics,
+                                      self.seed_tolerance_factor)
+        # cage pocket friction on each roller, force along v' (sim.physics.friction.cage_pocket_loads):
+        # the friction load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
         roller_loads = np.zeros((Z, 3))
-        for jj in np.flatnonzero(active):
-            roller_friction(jj, wR[jj], wc, wi, case, ev)
-            F_cage = par.drag_k * wc * wc - ev[EV_FT]
-            roller_loads[jj, 1] = par.mu_cage * F_cage * np.sign(wR[jj])
+        wc, converged = solve_friction(wc, wR, wi, start is None, case, settings, totals, roller_loads, jac)
         wR[:] = wR[source]
         roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
@@ -190,5 +169,5 @@ class FrictionModel:
             "lambda_ratio": lam,
             "cage_speed": wc * 30.0 / np.pi,                         # rad/s -> rpm
             "roller_loads": roller_loads,
-            "kinematics": (wc, wR.copy()),
+            "kinematics": (wc, wR.copy(), jac),
         }

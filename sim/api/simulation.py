@@ -44,6 +44,11 @@ MODEL_KEYS = ("bearing", "material", "solver", "friction", "lubricant")   # what
 def build_model(cfg):
     """Validated :class:`BearingModel` of a composed config (bearing, material, solver)."""
     validate(cfg)  # every key against its schema (sim.config_schema) before anything is built
+    return _bearing_model(cfg)
+
+
+def _bearing_model(cfg):
+    """:class:`BearingModel` of a config that passed :func:`sim.api.schema.validate`."""
     settings = SolverSettings.from_config(cfg.solver)
     geometry = Geometry.from_config(cfg.bearing, cfg.material, settings.n_slices)
     if "slice_stiffness_iso16281" not in cfg.material:
@@ -77,7 +82,7 @@ def solve_case(model, friction, op, output_cfg):
         # friction loads on the rollers (cage pocket) enter the load distribution; one
         # fixed-point pass: they are 1e-3 of the contact loads, so a second pass changes the
         # result below the solver tolerance
-        raw = model.solve(op, roller_loads=fr["roller_loads"])
+        raw = model.solve(op, roller_loads=fr["roller_loads"], start=raw)
         fr = friction.evaluate(op, raw, start=fr["kinematics"]) if raw["converged"] else {"friction_converged": False}
     res = case_results(model, op, raw, output_cfg)
     if not (res["converged"] and fr.pop("friction_converged")):
@@ -142,11 +147,14 @@ def config_yaml(cfg, plain=None):
 def build_models(cfg, plain=None):
     """(:func:`build_model`, :func:`build_friction`) of ``cfg``, built once per content of the
     config nodes they read (:data:`MODEL_KEYS`) and shared: both hold parameters only, and
-    every solve and evaluation allocates its own state."""
+    every solve and evaluation allocates its own state. The config is validated once per
+    content of the whole config (ConfigError before anything is built)."""
     plain = resolved(cfg) if plain is None else plain
+    # every key against its schema (sim.config_schema), once per content
+    _VALID.get(repr({k: v for k, v in plain.items() if k != "hydra"}), lambda: validate(cfg) or True)
 
     def make():
-        model = build_model(cfg)
+        model = _bearing_model(cfg)
         return model, build_friction(cfg, model)
 
     return _MODELS.get(repr([plain.get(key) for key in MODEL_KEYS]), make)
@@ -162,9 +170,7 @@ def clear_caches():
 def _solve_design(cfg, case_slice=slice(None), plain=None):
     """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config)."""
     plain = resolved(cfg) if plain is None else plain
-    # every key against its schema (sim.config_schema): ConfigError before anything runs, once per content
-    _VALID.get(repr({k: v for k, v in plain.items() if k != "hydra"}), lambda: validate(cfg) or True)
-    model, friction = build_models(cfg, plain)
+    model, friction = build_models(cfg, plain)   # validates first
     ops = operating_points(plain["load"])
     output = plain["output"]
     results = [solve_case(model, friction, op, output) for op in ops[case_slice]]

@@ -373,6 +373,27 @@ def traction_per_speed(p, v, h, phi, eta_p, tau0, c_tau, mu_s, v_s, G, t_transit
     return g
 
 
+# Relative error of the Eyring stress at which its Newton solve stops: half the double precision
+# unit roundoff 2^-53 ~ 1.1e-16, i.e. the root to rounding (the solve is the inner loop of the
+# traction; its value then does not depend on the iteration count, which the finite-difference
+# Jacobian of the kinematics needs).
+EYRING_REL_ERROR = 1e-16
+# Newton steps of the Eyring solve before it reports no convergence; from the start below the root
+# is reached in at most 6 steps for S, De in [0, 1e300] (tests/friction/test_traction_law.py).
+EYRING_MAX_STEPS = 100
+
+
+@kernel
+def _sinh_cosh(x):
+    """(sinh x, cosh x) for x >= 0 from one expm1 (accurate near 0 too: no e^x - e^-x cancellation)."""
+    em = np.expm1(x)
+    if em == np.inf:                    # x > ln(DBL_MAX): sinh, cosh overflow later than e^x
+        return np.sinh(x), np.cosh(x)
+    ep = 1.0 + em
+    sh = 0.5 * em * (1.0 + 1.0 / ep)    # (e^x - e^-x)/2 = (em + em/(1 + em))/2
+    return sh, sh + 1.0 / ep
+
+
 @kernel
 def eyring_maxwell_stress(S, De):
     """Stress of a Maxwell-Eyring film at a given strain rate, x = tau/tau_E0 [1].
@@ -383,9 +404,14 @@ def eyring_maxwell_stress(S, De):
     approximation :func:`traction_per_speed` makes for the Maxwell fluid), divided by
     tau_E0/eta: S = eta gamma_dot/tau_E0 (the Eyring number), De = eta/(G t) (a Deborah number).
 
-    Newton from x0 = min(asinh(S), S/De) >= root: f(x) = De x + sinh(x) - S is increasing and
-    convex on x >= 0, so the iterates fall monotonically to the root (no overshoot) and converge
-    quadratically; a fixed cap of 100 iterations is never reached for S, De in [0, 1e300].
+    Newton from x0 = min(asinh(S), S/De), both upper bounds of the root (f(asinh S) = De x0 >= 0,
+    f(S/De) = sinh(S/De) >= 0). f(x) = De x + sinh(x) - S is increasing and convex on x >= 0, so
+    the iterates fall monotonically to the root and converge quadratically. At x0 = asinh(S) the
+    first step needs no transcendental: f = De x0, f' = De + sqrt(1 + S^2). Stopping rule: the
+    Newton error e' = x' - r of the next iterate x' = x - dx obeys e' = f''(xi)/(2 f'(x)) e^2
+    with f''(xi) = sinh(xi) <= sinh(x) and e = dx + e', so sinh(x) dx^2 / f'(x) <= eps x'
+    (eps = EYRING_REL_ERROR) bounds e'/x' by eps/2 to first order: x' is the root to rounding,
+    one sinh/cosh evaluation before the step |dx| itself would fall below rounding.
 
     Parameters
     ----------
@@ -400,27 +426,32 @@ def eyring_maxwell_stress(S, De):
         tau / tau_E0 [1].
     converged : bool
     iterations : int
-    residual : float
-        |De x + sinh x - S| / max(S, 1e-300) [1].
+        Newton steps taken.
     """
     if S <= 0.0:
-        return 0.0, True, 0, 0.0
+        return 0.0, True, 0
     x = np.arcsinh(S)
-    if De > 0.0:
-        x = min(x, S / De)
-    it = 0
-    converged = False
-    for it in range(1, 101):
-        f = De * x + np.sinh(x) - S
-        dx = f / (De + np.cosh(x))
-        x -= dx
-        if x <= 0.0:            # cannot happen for convex f started right of the root; guard only
-            x = 0.5 * S / (1.0 + De)
-        if abs(dx) <= 1e-15 * x + 1e-300:
-            converged = True
-            break
-    res = abs(De * x + np.sinh(x) - S) / max(S, 1e-300)
-    return x, converged, it, res
+    sh = S                              # sinh(x)
+    fp = De + np.hypot(1.0, S)          # f'(x) = De + cosh(x), without overflow of S^2
+    f = De * x
+    if f > S:                           # the elastic bound S/De lies below asinh(S)
+        x = S / De
+        sh, ch = _sinh_cosh(x)
+        fp = De + ch
+        f = sh                          # De x - S = 0
+    for it in range(1, EYRING_MAX_STEPS + 1):
+        dx = f / fp
+        x_next = x - dx
+        if x_next <= 0.0:               # cannot happen for convex f started right of the root; guard only
+            x_next = 0.5 * S / (1.0 + De)
+        done = sh * dx * dx <= EYRING_REL_ERROR * fp * x_next
+        x = x_next
+        if done:
+            return x, True, it
+        sh, ch = _sinh_cosh(x)
+        fp = De + ch
+        f = De * x + sh - S
+    return x, False, EYRING_MAX_STEPS
 
 
 @kernel
@@ -484,7 +515,7 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
         tau_L = tau_L0 + c_tau * p
         De = eta_p / (G * t_transit)
         S = eta_p * v / (h * tau_E0)
-        x, conv, it, res = eyring_maxwell_stress(S, De)
+        x = eyring_maxwell_stress(S, De)[0]
         r = x / S if S > 0.0 else 1.0 / (1.0 + De)      # tau_M/(tau_E0 S) = tau_M h/(eta |v|)
         tau_M = tau_E0 * x
         g += (1.0 - phi) * (eta_p / h) * r * _tanh_over_x(tau_M / tau_L)

@@ -44,6 +44,7 @@ Unknowns: omega_R,j (roller moment about u' = 0, per roller) and omega_c (cage m
 rollers and the oil exert on the outer ring equals power loss / omega_i exactly (energy
 balance); the kernels compute both independently so the identity checks the solution.
 """
+import math
 from collections import namedtuple
 
 import numpy as np
@@ -135,15 +136,26 @@ FilmState = namedtuple("FilmState", [
     "Fy",           # (Z, 2, N) hysteresis rolling force [N]
     "p0",           # (Z, 2, N) Hertz pressure [MPa]
     "b",            # (Z, 2, N) Hertz half-width [mm]
-    "Eta",          # (Z, 2, N, len(tq)) film viscosity at the pressure of each width point [MPa s]
+    "Eta",          # (Z, 2, N, len(quad.wq)) film viscosity at the pressure of each width point [MPa s]
     "hrib",         # (Z,) rib film [mm]
     "Phirib",       # (Z,) rib solid load share [1]
     "prib",         # (Z,) rib Hertz mean pressure [MPa]
     "Etarib",       # (Z,) rib film viscosity at that pressure [MPa s]
 ])
 
-# Gauss-Legendre rule across a contact's width: nodes tq in (0, pi/2) of y = b sin(t) and weights wq.
-WidthQuadrature = namedtuple("WidthQuadrature", ["tq", "wq"])
+# Gauss-Legendre rule across a contact's width (:func:`width_quadrature`): weights wq of the nodes
+# t in (0, pi/2) of y = b sin(t), with cos(t) and sin(t) at the nodes (the kernels read only
+# these: they are evaluated once per rule, not at every width point of every call).
+WidthQuadrature = namedtuple("WidthQuadrature", ["cos_t", "sin_t", "wq"])
+
+
+def width_quadrature(n):
+    """:data:`WidthQuadrature` of ``n`` Gauss-Legendre points on t in (0, pi/2)."""
+    t, wt = np.polynomial.legendre.leggauss(int(n))
+    tq = 0.25 * np.pi * (t + 1.0)
+    # math.cos/sin per node: the libm values the kernels computed per point before (numpy's
+    # vectorised cos/sin may differ in the last ulp)
+    return WidthQuadrature(np.array([math.cos(x) for x in tq]), np.array([math.sin(x) for x in tq]), 0.25 * np.pi * wt)
 
 # Everything the friction of a roller depends on besides the speeds: ContactFrames
 # (sim.physics.roller_contact), ContactLoads, FilmState, FrictionParams, WidthQuadrature.
@@ -181,16 +193,16 @@ def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, quad):
     point contact (bk = 0, the rib): at the mean pressure p0k and the speed |st|. ``theta``
     scales the ambient viscosity (thermal reduction).
     """
-    tq, wq = quad.tq, quad.wq
+    cos_t, sin_t, wq = quad
     eta = par.eta0 * theta
     q_tot = 0.0
     q_sol = 0.0
-    npts = tq.shape[0] if bk > 0.0 else 1
+    npts = wq.shape[0] if bk > 0.0 else 1
     for i in range(npts):
         if bk > 0.0:
-            ct = np.cos(tq[i])
+            ct = cos_t[i]
             p = p0k * ct
-            vy = bk * np.sin(tq[i]) * ws
+            vy = bk * sin_t[i] * ws
             v = np.sqrt(st * st + vy * vy)
             weight = ct * wq[i]                  # sum of cos(t) w over (0, pi/2) = 1
         else:
@@ -268,14 +280,14 @@ def lubrication_state(wR, wc, wi, active, case):
         Rollers to evaluate; the others' film is left as it is (the caller never reads it).
     case : FrictionCase
         Frames, bearing arrays and parameters are read; ``case.film`` (:data:`FilmState`) is
-        written: film viscosity ``Eta`` at the pressure p0 cos(tq) of each width point after the
+        written: film viscosity ``Eta`` at the pressure p0 cos(t) of each width point after the
         thermal reduction, fixed while the kinematics are solved.
     """
     X, Nrm, Cen, Ax, Xrib = case.frames
     brg, film, par, quad = case.bearing, case.film, case.par, case.quad
     q, Qrib, R_eq, w, E_star = brg.q, brg.Qrib, brg.R_eq, brg.w, brg.E_star
     h, Phi, Fh, Fy, p0, b, Eta = film.h, film.Phi, film.Fh, film.Fy, film.p0, film.b, film.Eta
-    tq = quad.tq
+    cos_t = quad.cos_t
     Z = q.shape[0]
     n = q.shape[2]
     Ep = 2.0 * E_star                  # E' of the EHL film formulas [MPa]
@@ -319,8 +331,8 @@ def lubrication_state(wR, wc, wi, active, case):
                 Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
                 ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
                 theta = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, par, quad)
-                for i in range(tq.shape[0]):
-                    Eta[j, s, k, i] = pressure_viscosity(p0[j, s, k] * np.cos(tq[i]), par.eta0 * theta,
+                for i in range(cos_t.shape[0]):
+                    Eta[j, s, k, i] = pressure_viscosity(p0[j, s, k] * cos_t[i], par.eta0 * theta,
                                                          par.alpha, par.Z, par.pv_model)
         film.hrib[j] = 0.0
         film.Phirib[j] = 0.0
@@ -360,7 +372,7 @@ def roller_friction(j, wR, wc, wi, case, ev):
     film, par = case.film, case.par
     p0, b, h, Phi, Fh, Fy, Eta = film.p0, film.b, film.h, film.Phi, film.Fh, film.Fy, film.Eta
     Qrib, R_eq, w = case.bearing.Qrib, case.bearing.R_eq, case.bearing.w
-    tq, wq = case.quad.tq, case.quad.wq
+    cos_t, sin_t, wq = case.quad
     for i in range(NEV):
         ev[i] = 0.0
     cr = Cen[j, 0]
@@ -385,7 +397,7 @@ def roller_friction(j, wR, wc, wi, case, ev):
             bk = b[j, s, k]
             hk = h[j, s, k]
             phik = Phi[j, s, k]
-            eta = Eta[j, s, k]                                   # (len(tq),) [MPa s]
+            eta = Eta[j, s, k]                                   # (len(quad.wq),) [MPa s]
             frr = Fh[j, s, k] + Fy[j, s, k]
             v1, v2 = _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz)
             st = v1 - v2
@@ -397,9 +409,9 @@ def roller_friction(j, wR, wc, wi, case, ev):
             # width integral, y = b sin(t), t in (0, pi/2), both halves (|v| is even in y)
             Ft = 0.0
             Mn = 0.0
-            for i in range(tq.shape[0]):
-                ct = np.cos(tq[i])
-                y = bk * np.sin(tq[i])
+            for i in range(wq.shape[0]):
+                ct = cos_t[i]
+                y = bk * sin_t[i]
                 p = p0k * ct
                 vy = y * ws
                 v = np.sqrt(st * st + vy * vy)
@@ -453,3 +465,23 @@ def roller_friction(j, wR, wc, wi, case, ev):
     Pc = par.mu_cage * abs(Fcage) * case.bearing.rho_m
     ev[EV_MU] -= Pc if wR > 0.0 else -Pc
     ev[EV_CAGE] += Pc * abs(wR)
+
+
+@kernel
+def cage_pocket_loads(wR, wc, wi, active, case, loads):
+    """Cage pocket friction force on every active roller [N] (module docstring): the force
+    mu_c F_cage sign(omega_R) along v' (``loads[j, 1]``), F_cage = F_D - F_t the tangential force
+    the cage supplies, at roller speeds wR and cage speed wc [rad/s]; the friction load the
+    quasi-static balance takes back (BearingModel.solve(op, roller_loads)). ``loads`` (Z, 3) is
+    written, zero for the inactive rollers and the other components.
+    """
+    ev = np.empty(NEV)
+    par = case.par
+    for j in range(wR.shape[0]):
+        for a in range(loads.shape[1]):
+            loads[j, a] = 0.0
+        if not active[j]:
+            continue
+        roller_friction(j, wR[j], wc, wi, case, ev)
+        F_cage = par.drag_k * wc * wc - ev[EV_FT]
+        loads[j, 1] = par.mu_cage * F_cage * np.sign(wR[j])

@@ -92,6 +92,50 @@ def test_3d_kernel_equals_meridian_without_skew_and_loses_depth_with_skew(bearin
             assert np.all(np.abs(d3 - d_m) < skew**2 * g.Lwe)
 
 
+def _frames_closed_form(g, a, poses, ring, tilt):
+    """Contact frames of every roller in closed form (MODEL.md 3), numpy, independent of the
+    kernels: roller centre c = (Dpw/2 + xi sin(alpha) + eta cos(alpha), -xi cos(alpha) + eta
+    sin(alpha)); axes u' = u cos(theta) + v sin(theta), v' = -u sin(theta) + v cos(theta) with
+    u = (sin(alpha), -cos(alpha)), v = (cos(alpha), sin(alpha)); slice point on the roller
+    X = c + x u' +- rho v' (+ towards the outer raceway); normal into the ring: the cone's normal
+    (RACE_LINE) or the unit vector from the centre of the arc the point penetrates most
+    (RACE_LENS), in ring coordinates (the inner ring shifted by (delta_r cos(psi), delta_a) and
+    turned by tilt cos(psi)); roller-end / rib point c + (rib0 + rib2 rib3) u' + rib2 rib4 v' (the
+    end sphere's point along the nominal rib normal, geometry arrays ``rib``; zeros: the centre)."""
+    from sim.geometry import RACE_LINE
+
+    Z, n = g.Z, g.n_slices
+    X, Nrm = np.empty((Z, 2, n, 2)), np.empty((Z, 2, n, 2))
+    Cen, Ax, Xrib = np.empty((Z, 2)), np.empty((Z, 4)), np.empty((Z, 2))
+    sa, ca = np.sin(g.alpha), np.cos(g.alpha)
+    u, v = np.array([sa, -ca]), np.array([ca, sa])
+    rib = a["rib"]
+    for j in range(Z):
+        psi = 2.0 * np.pi * j / Z
+        xi, eta, th = poses[j]
+        c = np.array([0.5 * g.Dpw + xi * sa + eta * ca, -xi * ca + eta * sa])
+        up, vp = u * np.cos(th) + v * np.sin(th), -u * np.sin(th) + v * np.cos(th)
+        Cen[j], Ax[j] = c, np.concatenate([up, vp])
+        Xrib[j] = c + (rib[0] + rib[2] * rib[3]) * up + rib[2] * rib[4] * vp
+        for s, side in ((0, 1.0), (1, -1.0)):
+            pts = c + np.outer(a["x"], up) + side * np.outer(a["rho"], vp)       # (n, 2)
+            X[j, s] = pts
+            shift = np.array([ring[1] * np.cos(psi), ring[0]]) if s == 1 else np.zeros(2)
+            phi = tilt * np.cos(psi) if s == 1 else 0.0
+            rot = np.array([[np.cos(phi), -np.sin(phi)], [np.sin(phi), np.cos(phi)]])   # ring -> world
+            local = (pts - shift) @ rot                                            # world -> ring: Rot(-phi)
+            par = a["race_par"][s]
+            if a["race_kind"][s] == RACE_LINE:
+                nrm = np.tile(par[2:4], (n, 1))
+            else:
+                arcs = [local - par[2 * k:2 * k + 2] for k in range(2)]
+                dist = [np.linalg.norm(d, axis=1) for d in arcs]
+                deeper = (dist[1] - par[4] > dist[0] - par[4])[:, None]
+                nrm = np.where(deeper, arcs[1] / dist[1][:, None], arcs[0] / dist[0][:, None])
+            Nrm[j, s] = nrm @ rot.T
+    return {"X": X, "Nrm": Nrm, "Cen": Cen, "Ax": Ax, "Xrib": Xrib}
+
+
 @pytest.mark.parametrize("overrides,Fa,Fr,tilt_deg", [
     (["bearing=tsrb_reference"], 4500.0, 2000.0, 0.0),
     (["bearing=trb_32208"], 4500.0, 2000.0, 0.0),
@@ -101,10 +145,10 @@ def test_3d_kernel_equals_meridian_without_skew_and_loses_depth_with_skew(bearin
 ])
 def test_solver_frames_are_the_frames_of_the_returned_poses(overrides, Fa, Fr, tilt_deg):
     """The contact frames that BearingModel.solve returns (raw["frames"], from the solver's contact
-    evaluations, mirrored or copied for the rollers that a symmetry class stands for) equal
-    contact_frames recomputed at the returned poses and ring (MODEL.md 3): points and centres
-    to 1e-12 Dpw, unit vectors to 1e-12 (round-off of cos(psi) of mirrored azimuths)."""
-    from sim.physics.roller_contact import contact_frames, empty_frames
+    evaluations, mirrored or copied for the rollers that a symmetry class stands for) equal the
+    closed-form frames at the returned poses and ring (:func:`_frames_closed_form`, MODEL.md 3):
+    points and centres to 1e-12 Dpw, unit vectors to 1e-12 (round-off of cos(psi) of mirrored
+    azimuths and of the rotations)."""
     from tests.helpers import case
 
     model = build_model(sim.load_config(overrides))
@@ -112,10 +156,8 @@ def test_solver_frames_are_the_frames_of_the_returned_poses(overrides, Fa, Fr, t
     op = case(Fa, Fr, tilt=tilt_deg)
     raw = model.solve(op)
     assert raw["converged"]
-    ref = empty_frames(g.Z, g.n_slices)
-    contact_frames(raw["poses"], raw["ring"], np.radians(tilt_deg), g.alpha, g.Dpw, a["x"], a["rho"],
-                   a["race_kind"], a["race_par"], a["rib"], *ref)
+    ref = _frames_closed_form(g, a, raw["poses"], raw["ring"], np.radians(tilt_deg))
     for name in ("X", "Cen", "Xrib"):
-        np.testing.assert_allclose(getattr(raw["frames"], name), getattr(ref, name), rtol=0, atol=1e-12 * g.Dpw)
+        np.testing.assert_allclose(getattr(raw["frames"], name), ref[name], rtol=0, atol=1e-12 * g.Dpw)
     for name in ("Nrm", "Ax"):
-        np.testing.assert_allclose(getattr(raw["frames"], name), getattr(ref, name), rtol=0, atol=1e-12)
+        np.testing.assert_allclose(getattr(raw["frames"], name), ref[name], rtol=0, atol=1e-12)

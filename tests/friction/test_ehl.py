@@ -436,8 +436,7 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
     par = _thermal_par(beta, k_oil, k_s, kappa_s)
     p, h, v, half, U1, U2 = 330.0, 1.3e-3, 1160.0, 0.8, 2300.0, 3460.0   # MPa, mm, mm/s, mm, mm/s
     assert abs(U1 - U2) == v                 # the sliding speed of the surfaces
-    t, wt = np.polynomial.legendre.leggauss(16)
-    rule = friction.WidthQuadrature(0.25 * np.pi * (t + 1.0), 0.25 * np.pi * wt)
+    rule = friction.width_quadrature(16)
     eta0, alpha = par.eta0, par.alpha
     if line:
         # mean over y in (-b, b) = integral over t in (0, pi/2) of f(p0 cos t) cos t, y = b sin t

@@ -43,15 +43,22 @@ def fluid(v, eta=ETA_P, tau_E=TAU_E, G_=G, t=NO_ELASTIC, p=P, h=H, tau_L0=TAU_L0
 
 def test_solver_converges_to_machine_precision_over_the_whole_range():
     """De x + sinh x = S: monotone Newton from the right converges for S in [1e-12, 1e250] and
-    De in {0, 1e-6, ..., 1e250}; relative residual below 1e-13 (a few ulps of S; the
-    cancellation De x + sinh x - S loses nothing more), at most 12 iterations."""
+    De in {0, 1e-6, ..., 1e250}, to x within a few ulps of the root, at most 6 iterations.
+
+    Rounding x to the nearest double moves the relative residual by up to
+    eps x (De + cosh x) / S (its condition number; ~566 eps at S = 1e245, where x = 566), and
+    evaluating De x + sinh x - S adds a few eps: the relative residual must stay below
+    4 eps (1 + x (De + cosh x) / S), eps = 2^-52, i.e. x within about two ulps of the root."""
+    eps = np.finfo(float).eps
     worst, most = 0.0, 0
     for S in np.logspace(-12, 250, 60):
         for De in (0.0, 1e-6, 1e-2, 1.0, 1e2, 1e6, 1e12, 1e50, 1e250):
-            x, conv, it, res = ehl.eyring_maxwell_stress(S, De)
+            x, conv, it = ehl.eyring_maxwell_stress(S, De)
             assert conv and x > 0.0
-            worst, most = max(worst, res), max(most, it)
-    assert worst < 1e-13 and most <= 12, (worst, most)
+            res = abs(De * x + math.sinh(x) - S) / S
+            worst = max(worst, res / (eps * (1.0 + x * (De + math.cosh(x)) / S)))
+            most = max(most, it)
+    assert worst < 4.0 and most <= 6, (worst, most)
     assert ehl.eyring_maxwell_stress(0.0, 1.0)[0] == 0.0
 
 
