@@ -260,9 +260,13 @@ class LoadConfig:
     combine as a full factorial. One case (``OperatingPoint``) takes one number per key.
     """
 
-    Fa: Any = key(Number(0.0, 1e7, low_open=True, units="N", shape="number or list"))
-    Fr: Any = key(Number(0.0, 1e7, units="N", shape="number or list"))
-    speed: Any = key(Number(0.0, 1e5, units="rpm", shape="number or list"))
+    Fa: Any = key(Number(0.0, 1e7, low_open=True, units="N", shape="number or list"),
+                  note="per bearing, the equivalent static load P0 is bounded by solver.max_static_load_ratio x C0")
+    Fr: Any = key(Number(0.0, 1e7, units="N", shape="number or list"),
+                  note="per bearing, the equivalent static load P0 is bounded by solver.max_static_load_ratio x C0")
+    speed: Any = key(Number(0.0, 1e5, units="rpm", shape="number or list"),
+                     note="0 is the static case (friction: the breakaway torque); per bearing, speed x Dpw is "
+                          "bounded by solver.max_speed_dm")
     tilt: Any = key(Number(-2.0, 2.0, units="deg", shape="number or list"))
     oil_temperature: Any = key(Number(-40.0, 200.0, units="degC", shape="number or list"))
     zip: Any = field(default_factory=list, metadata={"check": None})
@@ -288,6 +292,11 @@ class SolverConfig:
     line_search_halvings: Any = key(Number(0, 60, integer=True))
     ring_step_fraction: Any = key(Number(0.0, 10.0, low_open=True))
     continuation_steps: Any = key(Number(0, 1000, integer=True))
+    max_static_load_ratio: Any = key(Number(0.0, 4.0, low_open=True),
+                                     note="at 4 C0 the Hertz pressure is twice ISO 76's 4000 MPa and the steel "
+                                          "has long yielded")
+    max_speed_dm: Any = key(Number(0.0, 2e6, low_open=True, units="mm/min"),
+                            note="DN 2e6 is beyond every rolling bearing of this kind in service")
 
 
 @dataclass

@@ -207,6 +207,11 @@ class Geometry:
         own = [f.name for f in fields(BearingConfig) if f.metadata.get("only") == kind]  # this type's keys
         E, nu, rho = float(material["E"]), float(material["nu"]), float(material["density"])
         alpha = np.radians(float(b["alpha"]))
+        if not alpha > 0.0:   # in the schema's range (0, 60) deg, but below the smallest double in radians
+            err = GeometryError(f"bearing.alpha = {float(b['alpha'])!r} is impossible: it must be > 0 rad once converted "
+                                "from degrees (it underflows to 0)")
+            err.key, err.rule, err.limit = "bearing.alpha", None, None
+            raise err
         Dwe, Dpw = float(b["Dwe"]), float(b["Dpw"])
         extra = {k: float(b[k]) for k in own}
         gamma = taper_angle(alpha, Dwe, Dpw)

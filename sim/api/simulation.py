@@ -166,6 +166,8 @@ def _solve_design(cfg, case_slice=slice(None), plain=None):
     _VALID.get(repr({k: v for k, v in plain.items() if k != "hydra"}), lambda: validate(cfg) or True)
     model, friction = build_models(cfg, plain)
     ops = operating_points(plain["load"])
+    for op in ops:   # the model's validity limits: InputError before anything is solved
+        model.check_limits(op)
     output = plain["output"]
     results = [solve_case(model, friction, op, output) for op in ops[case_slice]]
     return model, ops, results, plain
