@@ -122,7 +122,7 @@ class BearingModel:
         """
         g = self.geometry
         s = self.settings
-        if op.speed * g.Dpw > s.max_speed_dm:
+        if op.speed > s.max_speed_dm / g.Dpw:
             raise InputError(f"load.speed = {op.speed:g} rpm is outside the allowed range for this bearing: "
                              f"<= solver.max_speed_dm / Dpw = {s.max_speed_dm:g} / {g.Dpw:g} = "
                              f"{s.max_speed_dm / g.Dpw:g} rpm (beyond it roller and cage dynamics and the bearing's "
