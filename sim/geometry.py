@@ -207,12 +207,14 @@ class Geometry:
         own = [f.name for f in fields(BearingConfig) if f.metadata.get("only") == kind]  # this type's keys
         E, nu, rho = float(material["E"]), float(material["nu"]), float(material["density"])
         alpha = np.radians(float(b["alpha"]))
-        if not alpha > 0.0:   # in the schema's range (0, 60) deg, but below the smallest double in radians
-            err = GeometryError(f"bearing.alpha = {float(b['alpha'])!r} is impossible: it must be > 0 rad once converted "
-                                "from degrees (it underflows to 0)")
+        Dwe, Dpw = float(b["Dwe"]), float(b["Dpw"])
+        with np.errstate(divide="ignore", over="ignore"):
+            apex = 0.5 * Dpw / np.sin(alpha)
+        if not np.isfinite(apex):   # an alpha in (0, 60) deg that underflows to 0 rad (or nearly)
+            err = GeometryError(f"bearing.alpha = {float(b['alpha'])!r} is impossible: it underflows to 0 rad, so the "
+                                "raceway cones' apex, Dpw / (2 sin(alpha)) from the roller, lies infinitely far")
             err.key, err.rule, err.limit = "bearing.alpha", None, None
             raise err
-        Dwe, Dpw = float(b["Dwe"]), float(b["Dpw"])
         extra = {k: float(b[k]) for k in own}
         gamma = taper_angle(alpha, Dwe, Dpw)
         if kind == "TRB":

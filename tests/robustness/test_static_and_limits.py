@@ -185,7 +185,7 @@ def test_radial_load_beyond_C0_blames_Fr():
     (["load.Fa=1e7"], InputError, "load.Fa = 1e+07 N"),
     (["bearing.alpha=5.4e-89"], InputError, "contact angle 6.3e-89 deg"),
     (["bearing=trb_32208", "bearing.alpha=5.4e-89"], InputError, "load.Fa = 4500 N"),
-    (["bearing.alpha=5e-324"], GeometryError, "bearing.alpha = 5e-324"),
+    (["bearing.alpha=5e-324"], GeometryError, "bearing.alpha = 5e-324 is impossible: it underflows"),
     (["solver.max_static_load_ratio=0"], ConfigError, "solver.max_static_load_ratio = 0"),
     (["solver.max_speed_dm=3e6"], ConfigError, "solver.max_speed_dm = 3000000"),
 ], ids=["speed_40000", "speed_66641", "Fa_1e7", "alpha_tiny", "trb_alpha_tiny", "alpha_underflow",
