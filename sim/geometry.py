@@ -140,10 +140,15 @@ def max_rollers(Dpw, Dwe, web_ratio):
     if need >= Dpw:
         return 0
     z = int(np.pi / np.arcsin(need / Dpw))
-    while z > 0 and Dpw * np.sin(np.pi / z) < need:  # round-off at the boundary: the inequality decides
-        z -= 1
-    while Dpw * np.sin(np.pi / (z + 1)) >= need:
-        z += 1
+    # round-off at the boundary: the inequality decides. The formula is within one of it, so a
+    # step or two either way; unbounded loops never ended where z + 1 is z in floating point
+    # (Dpw = 1e300 mm, found by the fuzz of tests/robustness/test_fuzz_api.py)
+    for _ in range(2):
+        if z > 0 and Dpw * np.sin(np.pi / z) < need:
+            z -= 1
+    for _ in range(2):
+        if Dpw * np.sin(np.pi / (z + 1)) >= need:
+            z += 1
     return z
 
 

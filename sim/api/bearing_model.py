@@ -129,20 +129,24 @@ class BearingModel:
                              "heat balance govern, which the quasi-static model lacks; conf/solver/quasi_static.yaml)")
         k = s.max_static_load_ratio
         worst = None
-        for angle in sorted({float(g.ratings_alpha), float(np.degrees(g.cup_angle))}):
+        angles = {float(np.degrees(g.cup_angle)): "the cup angle alpha + gamma",
+                  float(g.ratings_alpha): "bearing.ratings_alpha" if g.type == "TSRB" else "the cup angle alpha + gamma"}
+        for angle, source in angles.items():
             if not angle < 90.0:   # alpha + gamma: ISO 76 rates radial bearings only
                 raise InputError(f"bearing.alpha = {float(np.degrees(g.alpha)):g} deg is outside the allowed range for "
                                  f"this bearing: its cup angle alpha + gamma = {angle:g} deg must be < 90 deg, where "
                                  "ISO 76 / ISO 281 rate a radial roller bearing (the static load limit needs C0)")
             C0 = float(ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, angle))
-            P0 = float(ratings.equivalent_static_load(op.Fr, op.Fa, angle))
+            with np.errstate(divide="ignore"):    # Y0 = 0.22 cot(angle) is infinite at an angle of 0
+                P0 = float(ratings.equivalent_static_load(op.Fr, op.Fa, angle))
             if worst is None or P0 / C0 > worst[0]:
-                worst = (P0 / C0, P0, C0, angle)
-        ratio, P0, C0, angle = worst
+                worst = (P0 / C0, P0, C0, angle, source)
+        ratio, P0, C0, angle, source = worst
         if ratio <= k:
             return
-        f = ratings.load_factors(angle)
-        why = (f"P0 = max(X0 Fr + Y0 Fa, Fr) = {P0:.6g} N at contact angle {angle:.4g} deg exceeds "
+        with np.errstate(divide="ignore"):
+            f = ratings.load_factors(angle)
+        why = (f"P0 = max(X0 Fr + Y0 Fa, Fr) = {P0:.6g} N at contact angle {angle:.4g} deg ({source}) exceeds "
                f"solver.max_static_load_ratio x C0 = {k:g} x {C0:.6g} N: ISO 76's C0 is the load of 4000 MPa contact "
                "stress, beyond which the steel yields and the elastic contact model is invalid; "
                "conf/solver/quasi_static.yaml")

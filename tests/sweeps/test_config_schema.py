@@ -40,7 +40,7 @@ def test_sensitivity_experiment_defines_28_valid_jobs():
 
 
 @pytest.mark.parametrize("overrides, message", [
-    (["bearing.aP=-5"], "bearing.aP = -5 is outside the allowed range: a number > 0 mm"),
+    (["bearing.aP=-5"], "bearing.aP = -5 is outside the allowed range: a number in [0.001, 100000] mm"),
     (["load.Fa=abc"], "load.Fa = 'abc' is outside the allowed range: a number in (0, 1e+07] N, or a list of them"),
     (["bearing.kappa=1.0"], "bearing.kappa = 1.0 is outside the allowed range: a number in (0, 1)"),
     (["bearing.Z=3.5"], "bearing.Z = 3.5 is outside the allowed range: an integer >= 3"),
