@@ -20,16 +20,28 @@ def load_config(overrides=None):
     Returns
     -------
     omegaconf.DictConfig
+
+    Raises
+    ------
+    sim.errors.ConfigError
+        An override that does not compose (a malformed override, a value of the wrong type for
+        a typed key such as ``friction.enabled=abc``, an unknown config file), with Hydra's reason.
     """
     from hydra import compose, initialize_config_dir
     from hydra.core.global_hydra import GlobalHydra
+    from hydra.errors import ConfigCompositionException, OverrideParseException
 
     import sim.api.schema  # noqa: F401  registers the group schemas that conf/config.yaml composes
+    from sim.errors import ConfigError
 
     if GlobalHydra.instance().is_initialized():
         GlobalHydra.instance().clear()
     with initialize_config_dir(config_dir=str(CONF_DIR), version_base="1.3"):
-        return compose(config_name="config", overrides=list(overrides or []))
+        try:
+            return compose(config_name="config", overrides=list(overrides or []))
+        except (ConfigCompositionException, OverrideParseException) as exc:
+            reason = f": {exc.__cause__}" if exc.__cause__ is not None else ""
+            raise ConfigError(f"{exc}{reason}") from exc
 
 
 def simulate(cfg):

@@ -134,20 +134,31 @@ def key(check, only=None, optional=False, note="", only_note=""):
                                             "only_note": only_note})
 
 
-def mm():
-    """A length > 0 mm."""
-    return Number(0.0, low_open=True, units="mm")
+#: why a bearing length lies in [LENGTH_MIN, LENGTH_MAX] mm (every key declared with :func:`mm`)
+LENGTH_NOTE = ("1 um to 100 m spans every rolling bearing (the largest slewing bearings are about 10 m across); "
+               "beyond it float64 geometry (sines of tiny angles, circles of huge radius) under- or overflows")
+LENGTH_MIN, LENGTH_MAX = 1e-3, 1e5
+
+
+def mm(**options):
+    """A bearing length in [1e-3, 1e5] mm (LENGTH_NOTE), with the reason as the key's note."""
+    return key(Number(LENGTH_MIN, LENGTH_MAX, units="mm"), note=LENGTH_NOTE, **options)
 
 
 # ---------------------------------------------------------------------------- bearing
+#: why a composite roughness is at least 1 nm
+ROUGHNESS_NOTE = ("below 1 nm a surface is atomically smooth: finished raceways and rollers have Rq of 0.02 um and "
+                  "more")
+
+
 @dataclass
 class SurfaceConfig:
     """Roughness and Zhou-Hoeprich mixed friction (thesis (5.16))."""
 
-    sigma: Any = key(Number(0.0, 10.0, low_open=True, units="um"))
+    sigma: Any = key(Number(1e-3, 10.0, units="um"), note=ROUGHNESS_NOTE)
     B_ZH: Any = key(Number(0.0, 20.0, low_open=True))
     C_ZH: Any = key(Number(0.0, 5.0, low_open=True))
-    sigma_rib: Any = key(Number(0.0, 10.0, low_open=True, units="um"), only="TRB")
+    sigma_rib: Any = key(Number(1e-3, 10.0, units="um"), only="TRB", note=ROUGHNESS_NOTE)
     B_ZH_rib: Any = key(Number(0.0, 20.0, low_open=True), only="TRB")
     C_ZH_rib: Any = key(Number(0.0, 5.0, low_open=True), only="TRB")
 
@@ -163,19 +174,19 @@ class BearingConfig:
     ratings_alpha: Any = key(Number(0.0, 90.0, True, True, units="deg"), only="TSRB",
                              only_note="ISO 281 rates a tapered roller bearing at its cup (outer raceway) angle "
                                   "alpha + gamma, which is derived; remove the key")
-    aP: Any = key(mm(), only="TSRB")
-    aPk: Any = key(mm(), only="TSRB")
-    B: Any = key(mm())
-    Dpw: Any = key(mm())
-    Dwe: Any = key(mm())
-    Lwe: Any = key(mm())
+    aP: Any = mm(only="TSRB")
+    aPk: Any = mm(only="TSRB")
+    B: Any = mm()
+    Dpw: Any = mm()
+    Dwe: Any = mm()
+    Lwe: Any = mm()
     PCR: Any = key(Number(0.0, 1e5, low_open=True, units="mm"), only="TSRB",
                    note="engineering choice: at 1e5 mm a 100 mm roller is straight to 13 um, and beyond it the "
                         "float64 round-off of circles centred PCR away (1e-16 PCR) grows towards the contact approach")
     kappa: Any = key(Number(0.0, 1.0, True, True), only="TSRB",
                      note="kappa = 1 gives PCR_LB = PCR: no two-point contact")
-    r: Any = key(mm())
-    R: Any = key(mm())
+    r: Any = mm()
+    R: Any = mm()
     Z: Any = key(Number(3, integer=True))
     cage_web_ratio: Any = key(Number(0.0, 0.5, units="1"),
                               note="least cage web between neighbouring rollers at the pitch circle, in roller "
@@ -192,9 +203,11 @@ class BearingConfig:
 class MaterialConfig:
     """Bearing steel (thesis Table A.1) and the ISO/TS 16281 slice stiffness."""
 
-    E: Any = key(Number(0.0, low_open=True, units="N/mm^2"))
+    E: Any = key(Number(5e4, 1e6, units="N/mm^2"),
+                 note="rolling-bearing materials: bearing steels 2.1e5, silicon nitride 3.1e5, tungsten carbide 6.5e5")
     nu: Any = key(Number(0.0, 0.5, high_open=True))
-    density: Any = key(Number(0.0, low_open=True, units="kg/m^3"))
+    density: Any = key(Number(1000.0, 20000.0, units="kg/m^3"),
+                       note="rolling-bearing materials: silicon nitride 3200, steels 7850, tungsten carbide 15600")
     slice_stiffness_iso16281: Any = key(Number(0.0, low_open=True, units="N/mm^(10/9)"))
     thermal_conductivity: Any = key(Number(1.0, 500.0, units="W/(m K)"))
     specific_heat: Any = key(Number(100.0, 5000.0, units="J/(kg K)"))
@@ -212,13 +225,16 @@ class LubricantConfig:
     density_temperature: Any = key(Number(-40.0, 200.0, units="degC"))
     density: Any = key(Number(500.0, 1500.0, units="kg/m^3"))
     density_slope: Any = key(Number(-5.0, 0.0, units="kg/(m^3 K)"))
-    pressure_viscosity: Any = key(Number(0.0, 0.1, units="1/MPa"))
+    pressure_viscosity: Any = key(Number(0.0, 0.05, units="1/MPa"),
+                                  note="mineral and synthetic oils 0.01-0.035, traction fluids to about 0.04 1/MPa")
     pressure_viscosity_model: str = key(Choice(("barus", "roelands")))
     limiting_shear_coefficient: Any = key(Number(0.0, 0.5, low_open=True))
     limiting_shear_stress_0: Any = key(Number(0.0, 100.0, units="MPa"))
     shear_modulus: Any = key(Number(10.0, 1e5, units="MPa"))
     thermal_conductivity: Any = key(Number(0.01, 1.0, units="W/(m K)"))
-    eyring_stress: Any = key(Number(0.0, 100.0, low_open=True, units="MPa"))
+    eyring_stress: Any = key(Number(0.1, 100.0, units="MPa"),
+                             note="lubricants' Eyring stresses are 1-20 MPa (Johnson & Tevaarwerk 1977; Evans & "
+                                  "Johnson 1986)")
 
 
 @dataclass
@@ -260,9 +276,13 @@ class LoadConfig:
     combine as a full factorial. One case (``OperatingPoint``) takes one number per key.
     """
 
-    Fa: Any = key(Number(0.0, 1e7, low_open=True, units="N", shape="number or list"))
-    Fr: Any = key(Number(0.0, 1e7, units="N", shape="number or list"))
-    speed: Any = key(Number(0.0, 1e5, units="rpm", shape="number or list"))
+    Fa: Any = key(Number(0.0, 1e7, low_open=True, units="N", shape="number or list"),
+                  note="per bearing, the equivalent static load P0 is bounded by solver.max_static_load_ratio x C0")
+    Fr: Any = key(Number(0.0, 1e7, units="N", shape="number or list"),
+                  note="per bearing, the equivalent static load P0 is bounded by solver.max_static_load_ratio x C0")
+    speed: Any = key(Number(0.0, 1e5, units="rpm", shape="number or list"),
+                     note="0 is the static case (friction: the breakaway torque); per bearing, speed x Dpw is "
+                          "bounded by solver.max_speed_dm")
     tilt: Any = key(Number(-2.0, 2.0, units="deg", shape="number or list"))
     oil_temperature: Any = key(Number(-40.0, 200.0, units="degC", shape="number or list"))
     zip: Any = field(default_factory=list, metadata={"check": None})
@@ -288,6 +308,11 @@ class SolverConfig:
     line_search_halvings: Any = key(Number(0, 60, integer=True))
     ring_step_fraction: Any = key(Number(0.0, 10.0, low_open=True))
     continuation_steps: Any = key(Number(0, 1000, integer=True))
+    max_static_load_ratio: Any = key(Number(0.0, 4.0, low_open=True),
+                                     note="at 4 C0 the Hertz pressure is twice ISO 76's 4000 MPa and the steel "
+                                          "has long yielded")
+    max_speed_dm: Any = key(Number(0.0, 2e6, low_open=True, units="mm/min"),
+                            note="DN 2e6 is beyond every rolling bearing of this kind in service")
 
 
 @dataclass

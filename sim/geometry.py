@@ -140,10 +140,15 @@ def max_rollers(Dpw, Dwe, web_ratio):
     if need >= Dpw:
         return 0
     z = int(np.pi / np.arcsin(need / Dpw))
-    while z > 0 and Dpw * np.sin(np.pi / z) < need:  # round-off at the boundary: the inequality decides
-        z -= 1
-    while Dpw * np.sin(np.pi / (z + 1)) >= need:
-        z += 1
+    # round-off at the boundary: the inequality decides. The formula is within one of it, so a
+    # step or two either way; unbounded loops never ended where z + 1 is z in floating point
+    # (Dpw = 1e300 mm, found by the fuzz of tests/robustness/test_fuzz_api.py)
+    for _ in range(2):
+        if z > 0 and Dpw * np.sin(np.pi / z) < need:
+            z -= 1
+    for _ in range(2):
+        if Dpw * np.sin(np.pi / (z + 1)) >= need:
+            z += 1
     return z
 
 
@@ -208,6 +213,13 @@ class Geometry:
         E, nu, rho = float(material["E"]), float(material["nu"]), float(material["density"])
         alpha = np.radians(float(b["alpha"]))
         Dwe, Dpw = float(b["Dwe"]), float(b["Dpw"])
+        with np.errstate(divide="ignore", over="ignore"):
+            apex = 0.5 * Dpw / np.sin(alpha)
+        if not np.isfinite(apex):   # an alpha in (0, 60) deg that underflows to 0 rad (or nearly)
+            err = GeometryError(f"bearing.alpha = {float(b['alpha'])!r} is impossible: it underflows to 0 rad, so the "
+                                "raceway cones' apex, Dpw / (2 sin(alpha)) from the roller, lies infinitely far")
+            err.key, err.rule, err.limit = "bearing.alpha", None, None
+            raise err
         extra = {k: float(b[k]) for k in own}
         gamma = taper_angle(alpha, Dwe, Dpw)
         if kind == "TRB":

@@ -42,7 +42,7 @@ CASE_VARIABLES = {
     "P0": ((), "N", "ISO 281 equivalent static load (2.8)"),
     "L10": ((), "1e6 rev", "basic rating life with C_eff (2.15)"),
     "cage_speed": ((), "rpm", "cage speed: from the traction balance with friction, else rolling without slip (2.20)"),
-    "torque": ((), "N*mm", "frictional torque of the bearing (on the outer ring)"),
+    "torque": ((), "N*mm", "frictional torque of the bearing (on the outer ring); at speed 0 the breakaway torque (boundary friction, no film)"),
     "torque_component": (("component",), "N*mm", "torque breakdown by loss mechanism (power / inner-ring speed)"),
     "power_loss": ((), "W", "frictional power loss"),
     "srr": (("race", "slice"), "1", "slide-to-roll ratio along the most loaded roller, roller against ring (2.25)"),

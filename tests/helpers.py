@@ -39,10 +39,12 @@ def race_forces(model, raw, race=1, tilt_deg=0.0):
     return Fx, Fz
 
 
-def roller_residuals(model, raw, op, ext=None):
+def roller_residuals(model, raw, op, ext=None, reported=False):
     """Relative residual of every loaded roller: contact forces (recomputed from the returned
     poses and ring) + centrifugal force + gyroscopic moment + external load ``ext`` (Z, 3),
-    over its loads [1]."""
+    over its loads [1]. ``reported``: only the rollers the solver reports loaded (Q or Q_rib
+    > 0); the returned pose of a roller it released may still touch the rib (a TRB roller out of
+    the load zone, tilted ring: issue 15 fuzz finding)."""
     from sim.physics.contact import roller_axes
     from sim.physics.roller_contact import empty_roller_contact, roller_contact
 
@@ -59,7 +61,7 @@ def roller_residuals(model, raw, op, ext=None):
         roller_contact(raw["ring"], np.radians(op.tilt) * np.cos(psi), np.cos(psi), model.bearing, model.elasticity,
                        state)
         f, Q = state.f, state.Q
-        if Q[0] + Q[1] == 0.0:
+        if Q[0] + Q[1] == 0.0 or (reported and raw["Q"][j].sum() + raw["Q_rib"][j] == 0.0):
             continue  # unloaded roller, held by the cage
         ur, uz, vr, vz = roller_axes(g.alpha, raw["poses"][j, 2])
         r = f[:3] + np.array([body.centrifugal * ur, body.centrifugal * vr, body.gyroscopic]) + ext[j]

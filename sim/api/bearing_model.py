@@ -72,6 +72,9 @@ class SolverSettings:
     line_search_halvings: int
     ring_step_fraction: float
     continuation_steps: int
+    # validity limits of the model (check_limits; reasons in conf/solver/quasi_static.yaml)
+    max_static_load_ratio: float
+    max_speed_dm: float
 
     @classmethod
     def from_config(cls, solver):
@@ -105,6 +108,53 @@ class BearingModel:
                                      float(s.roller_tolerance_ratio), float(s.forcing),
                                      float(s.roller_step_interference), float(s.roller_step_length),
                                      int(s.line_search_halvings), float(s.ring_step_fraction))
+
+    def check_limits(self, op: OperatingPoint):
+        """Refuse a load case beyond the validity of the model, before any solve: InputError
+        naming the load key, its value, the allowed range for this bearing and the reason.
+
+        - speed x Dpw <= solver.max_speed_dm (quasi-static model, no roller / cage dynamics, no
+          heat balance of the bearing);
+        - P0 <= solver.max_static_load_ratio x C0 (ISO 76; elastic contacts), with P0 and C0 at
+          ratings_alpha (the reported P0, C0) and at the cup angle alpha + gamma, which carries
+          the axial load (for a TRB both are the same angle): a configured TSRB ratings_alpha does
+          not hide a roller-axis angle too flat to carry Fa elastically.
+        """
+        g = self.geometry
+        s = self.settings
+        if op.speed > s.max_speed_dm / g.Dpw:
+            raise InputError(f"load.speed = {op.speed:g} rpm is outside the allowed range for this bearing: "
+                             f"<= solver.max_speed_dm / Dpw = {s.max_speed_dm:g} / {g.Dpw:g} = "
+                             f"{s.max_speed_dm / g.Dpw:g} rpm (beyond it roller and cage dynamics and the bearing's "
+                             "heat balance govern, which the quasi-static model lacks; conf/solver/quasi_static.yaml)")
+        k = s.max_static_load_ratio
+        worst = None
+        angles = {float(np.degrees(g.cup_angle)): "the cup angle alpha + gamma",
+                  float(g.ratings_alpha): "bearing.ratings_alpha" if g.type == "TSRB" else "the cup angle alpha + gamma"}
+        for angle, source in angles.items():
+            if not angle < 90.0:   # alpha + gamma: ISO 76 rates radial bearings only
+                raise InputError(f"bearing.alpha = {float(np.degrees(g.alpha)):g} deg is outside the allowed range for "
+                                 f"this bearing: its cup angle alpha + gamma = {angle:g} deg must be < 90 deg, where "
+                                 "ISO 76 / ISO 281 rate a radial roller bearing (the static load limit needs C0)")
+            C0 = float(ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, angle))
+            with np.errstate(divide="ignore"):    # Y0 = 0.22 cot(angle) is infinite at an angle of 0
+                P0 = float(ratings.equivalent_static_load(op.Fr, op.Fa, angle))
+            if worst is None or P0 / C0 > worst[0]:
+                worst = (P0 / C0, P0, C0, angle, source)
+        ratio, P0, C0, angle, source = worst
+        if ratio <= k:
+            return
+        with np.errstate(divide="ignore"):
+            f = ratings.load_factors(angle)
+        why = (f"P0 = max(X0 Fr + Y0 Fa, Fr) = {P0:.6g} N at contact angle {angle:.4g} deg ({source}) exceeds "
+               f"solver.max_static_load_ratio x C0 = {k:g} x {C0:.6g} N: ISO 76's C0 is the load of 4000 MPa contact "
+               "stress, beyond which the steel yields and the elastic contact model is invalid; "
+               "conf/solver/quasi_static.yaml")
+        if op.Fr > k * C0:
+            raise InputError(f"load.Fr = {op.Fr:g} N is outside the allowed range for this bearing: "
+                             f"<= {k * C0:.6g} N ({why})")
+        raise InputError(f"load.Fa = {op.Fa:g} N is outside the allowed range for this bearing at load.Fr = "
+                         f"{op.Fr:g} N: <= {(k * C0 - f['X0'] * op.Fr) / f['Y0']:.6g} N ({why})")
 
     def body_loads(self, op: OperatingPoint):
         """Body loads on a loaded roller, rolling kinematics (2.20), (2.22): BodyLoads(centrifugal

@@ -21,6 +21,25 @@ MPA_S_PER_PA_S = 1e-6
 T_PER_MM3_PER_KG_PER_M3 = 1e-12     # density: 1 kg/m^3 = 1e-12 t/mm^3
 W_PER_N_MM_PER_S = 1e-3
 
+# Speed 0 (``load.speed = 0``): the zero-speed breakaway (starting) torque, the speed -> 0 limit of
+# the model without a film. No entrainment, hence no EHL film and no EHL rolling loss; no rolling,
+# hence no hysteresis loss and no drag; every raceway and rib contact in boundary friction (solid
+# load share 1, Coulomb mu = friction.solid_friction_coefficient) along the slip directions at the
+# onset of motion: with friction.kinematics = traction the roller and cage speeds that balance
+# those Coulomb forces (free rollers start to roll where their moments vanish), with rolling the
+# directions of rolling kinematics (2.20), (2.22). This is the SKF (2004) starting torque, the
+# sliding frictional moment with the boundary-lubrication coefficient and no rolling moment, and
+# Harris & Kotzalas (2007, Advanced Concepts, ch. 4: friction at start-up, boundary lubrication
+# without an EHL film). Coulomb forces do not depend on the slip speed, so every loss power is
+# proportional to the speed and power / inner-ring speed is the same at any speed: the kernels run
+# at the nominal speed BREAKAWAY_NOMINAL_SPEED with the solid friction's regularising speed v_s
+# (tanh(|v| / v_s), sim.physics.ehl) replaced by BREAKAWAY_SLIP_RESOLUTION times the pitch surface
+# speed, so that it is saturated wherever a contact slips. Measured: the raceway slips of the TRB
+# 32208 are 1e-8 to 1e-7 of the surface speed, its breakaway torque changes by < 1e-8 relative
+# between resolutions 1e-10 and 1e-12 (3.4 % at 1e-6); the TSRBs' slips are 1e-3 to 1e-1.
+BREAKAWAY_NOMINAL_SPEED = 1.0       # rpm: sets the slip directions only
+BREAKAWAY_SLIP_RESOLUTION = 1e-10   # 1, v_s of the breakaway case over the pitch surface speed
+
 
 class FrictionModel:
     """Friction parameters of one bearing, lubricant and friction config; evaluates solved cases.
@@ -88,7 +107,7 @@ class FrictionModel:
             sigma=sigma, B_ZH=B_ZH, C_ZH=C_ZH, sigma_rib=sigma_rib, B_ZH_rib=B_ZH_rib, C_ZH_rib=C_ZH_rib,
             film=FILM_FORMULAS[film], drag_k=np.nan, thermal=thermal, k_oil=float(lubricant.thermal_conductivity),
             k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol,
-            inlet_heating=bool(friction["inlet_shear_heating"]))
+            inlet_heating=bool(friction["inlet_shear_heating"]), boundary_only=False)
         self.quad = width_quadrature(friction["width_points"])
 
     def evaluate(self, op, raw, start=None):
@@ -103,6 +122,10 @@ class FrictionModel:
         cage speed rpm), ``friction_converged``, the cage pocket ``roller_loads`` (Z, 3) [N]
         and ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s],
         :data:`sim.solvers.kinematics.KinematicJacobian`).
+
+        At ``op.speed == 0`` the torque is the zero-speed breakaway torque (BREAKAWAY_NOMINAL_SPEED):
+        boundary friction along the slip directions at the onset of motion, power loss 0, cage
+        and roller speeds 0, no film; ``start`` is not used.
         """
         g = self.geometry
         a = g.arrays
@@ -112,16 +135,20 @@ class FrictionModel:
             eta0=eta0, Z=float(roelands_index(eta0, self.par.alpha)),
             beta=float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature)),
             drag_k=self.drag_factor * float(self.lubricant.density(op.oil_temperature)))
+        static = op.speed == 0.0
+        speed = BREAKAWAY_NOMINAL_SPEED if static else op.speed
+        wi = float(angular_speed(speed))
+        if static:   # no film, Coulomb friction wherever a contact slips; no drag (it goes as the speed squared)
+            par = par._replace(v_s=BREAKAWAY_SLIP_RESOLUTION * wi * 0.5 * g.Dpw, drag_k=0.0, boundary_only=True)
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         X, Cen, Ax = frames.X, frames.Cen, frames.Ax
         q = raw["line_load"]
         bearing = ContactLoads(q=q, Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), R_end=float(a["rib"][2]), rho_m=0.5 * g.Dwe)
-        wi = float(angular_speed(op.speed))
-        wc = float(angular_speed(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
-        wR = np.full(Z, float(angular_speed(roller_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
+        wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
+        wR = np.full(Z, float(angular_speed(roller_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
         jac = empty_jacobian(Z)
-        if start is not None:
+        if start is not None and not static:
             wc, wR, jac = start[0], start[1].copy(), start[2]
         load = raw["Q"].sum(axis=1)
         # the rollers one solution stands for: the classes of the quasi-static solve (sim.solvers.symmetry)
@@ -141,7 +168,7 @@ class FrictionModel:
         # cage pocket friction on each roller, force along v' (sim.physics.friction.cage_pocket_loads):
         # the friction load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
         roller_loads = np.zeros((Z, 3))
-        wc, converged = solve_friction(wc, wR, wi, start is None, case, settings, totals, roller_loads, jac)
+        wc, converged = solve_friction(wc, wR, wi, start is None or static, case, settings, totals, roller_loads, jac)
         wR[:] = wR[source]
         roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
@@ -157,13 +184,21 @@ class FrictionModel:
         film_um = np.where(loaded, film.h[j] * UM_PER_MM, np.nan)
         kmax = np.argmax(q[j], axis=1)
         lam = np.array([film.h[j, s, kmax[s]] / par.sigma for s in range(2)])
-        return {
-            "friction_converged": bool(converged),
-            "torque": float(totals[EV_TOUT]),
+        if static:   # power / speed is the same at any speed (Coulomb friction): that of the nominal speed
+            components = power / wi
+            power_loss = 0.0
+            wc = 0.0
+            wR[:] = 0.0
+        else:
             # breakdown in proportion to each mechanism's power: sums to the outer-ring torque exactly
             # (which itself equals power / omega_i up to the kinematic tolerance, module docstring)
-            "torque_component": totals[EV_TOUT] * power / power.sum(),
-            "power_loss": float(power.sum()) * W_PER_N_MM_PER_S,
+            components = totals[EV_TOUT] * power / power.sum()
+            power_loss = float(power.sum()) * W_PER_N_MM_PER_S
+        return {
+            "friction_converged": bool(converged),
+            "torque": float(components.sum()) if static else float(totals[EV_TOUT]),
+            "torque_component": components,
+            "power_loss": power_loss,
             "srr": srr,
             "film_thickness": film_um,
             "lambda_ratio": lam,
@@ -171,3 +206,4 @@ class FrictionModel:
             "roller_loads": roller_loads,
             "kinematics": (wc, wR.copy(), jac),
         }
+

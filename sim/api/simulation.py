@@ -172,6 +172,8 @@ def _solve_design(cfg, case_slice=slice(None), plain=None):
     plain = resolved(cfg) if plain is None else plain
     model, friction = build_models(cfg, plain)   # validates first
     ops = operating_points(plain["load"])
+    for op in ops:   # the model's validity limits: InputError before anything is solved
+        model.check_limits(op)
     output = plain["output"]
     results = [solve_case(model, friction, op, output) for op in ops[case_slice]]
     return model, ops, results, plain

@@ -97,6 +97,8 @@ FrictionParams = namedtuple("FrictionParams", [
     "kappa_steel",  # mm^2/s, thermal diffusivity of the steel
     "dT_tol",       # K, tolerance of the film temperature solve
     "inlet_heating",  # bool, inlet shear heating thins the film and the rolling loss (Gupta et al. 1992)
+    "boundary_only",  # bool, no film: every contact in boundary friction, no rolling loss (the breakaway
+                      # torque at load.speed = 0, sim.api.friction_model)
 ])
 
 # Film traction laws (config friction.traction_law): the Maxwell-Eyring film limited by tau_L
@@ -316,6 +318,17 @@ def lubrication_state(wR, wc, wi, active, case):
                 bk = hertz_line_half_width(qk, R, E_star)
                 b[j, s, k] = bk
                 p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
+                if par.boundary_only:
+                    # no entrainment, no film: the solid carries the contact (Phi = 1, boundary
+                    # friction), no EHL rolling force and, without rolling, no hysteresis loss;
+                    # the film viscosity is never read with Phi = 1 ((1 - Phi) tau_lub = 0)
+                    h[j, s, k] = 0.0
+                    Phi[j, s, k] = 1.0
+                    Fh[j, s, k] = 0.0
+                    Fy[j, s, k] = 0.0
+                    for i in range(cos_t.shape[0]):
+                        Eta[j, s, k, i] = 0.0
+                    continue
                 # inlet shear heating thins the film and lowers the Poiseuille rolling force alike
                 # (Zhou & Hoeprich 1991 eq. 22, factor of Gupta et al. 1992)
                 phi_T = 1.0
@@ -345,6 +358,10 @@ def lubrication_state(wR, wc, wi, active, case):
             # sphere on a locally flat rib: circular Hertz contact, a = (3 Q R / (4 E*))^(1/3) (Johnson 4.22)
             a = (3.0 * Qrib[j] * R_end / (4.0 * E_star)) ** (1.0 / 3.0)
             prib = Qrib[j] / (np.pi * a * a)
+            if par.boundary_only:       # no film at the rib either (above)
+                film.prib[j] = prib
+                film.Phirib[j] = 1.0
+                continue
             hrib = film_point(u, Qrib[j], R_end, R_end, par.eta0, par.alpha, Ep)
             Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
             theta = _viscosity_factor(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2, par, quad)

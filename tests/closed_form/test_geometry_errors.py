@@ -45,9 +45,9 @@ REFUSED = [
     pytest.param("bearing.kappa=1.2", "kappa", "1.2", "(0, 1)", id="kappa_1.2_PCR_LB_below_PCR"),
     pytest.param("bearing.aPk=9", "aPk", "9.0", "Lwe - aP = 8.5", id="aPk_plus_aP_beyond_Lwe"),
     pytest.param("bearing.aPk=8.5", "aPk", "8.5", "Lwe - aP = 8.5", id="aPk_plus_aP_equal_Lwe"),
-    pytest.param("bearing.aPk=0", "aPk", "0", "> 0", id="aPk_zero"),
-    pytest.param("bearing.aP=0", "aP", "0", "> 0", id="aP_zero"),
-    pytest.param("bearing.aP=-1", "aP", "-1", "> 0", id="aP_negative"),
+    pytest.param("bearing.aPk=0", "aPk", "0", "[0.001, 100000] mm", id="aPk_zero"),
+    pytest.param("bearing.aP=0", "aP", "0", "[0.001, 100000] mm", id="aP_zero"),
+    pytest.param("bearing.aP=-1", "aP", "-1", "[0.001, 100000] mm", id="aP_negative"),
     pytest.param("bearing.PCR=8", "PCR", "8.0", "Lwe/(2 (1 - sin(gamma))) = 8.857", id="PCR_below_half_Lwe"),
     pytest.param("bearing.PCR=8.8", "PCR", "8.8", "Lwe/(2 (1 - sin(gamma))) = 8.857", id="PCR_below_crown_bound"),
     pytest.param("bearing.Dwe=60", "Dwe", "60.0", "Dpw = 60.0", id="Dwe_equal_Dpw"),
@@ -60,7 +60,7 @@ REFUSED = [
     pytest.param("bearing.alpha=70", "alpha", "70", "(0, 60)", id="alpha_70"),
     pytest.param("bearing.Z=2", "Z", "2", ">= 3", id="Z_2"),
     pytest.param("bearing.Z=3.5", "Z", "3.5", "integer", id="Z_not_integer"),
-    pytest.param("bearing.Lwe=-17", "Lwe", "-17", "> 0", id="Lwe_negative"),
+    pytest.param("bearing.Lwe=-17", "Lwe", "-17", "[0.001, 100000] mm", id="Lwe_negative"),
 ]
 
 

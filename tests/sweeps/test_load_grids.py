@@ -36,7 +36,8 @@ def test_zipped_lists_pair_up_and_cross_the_rest():
     ({"zip": [["Fa", "Fx"]]}, r"load\.zip names 'Fx'"),
     ({"Fa": "abc"}, r"load\.Fa = 'abc' is not a number"),
     ({"Fa": []}, r"load\.Fa is an empty list"),
-    ({"Fa": [1000, -1]}, r"load\.Fa = -1 is outside the allowed range: a number in \(0, 1e\+07\] N$"),
+    ({"Fa": [1000, -1]}, r"load\.Fa = -1 is outside the allowed range: a number in \(0, 1e\+07\] N \(per bearing, the equivalent "
+                        r"static load P0 is bounded by solver\.max_static_load_ratio x C0\)$"),
 ])
 def test_impossible_grids_are_refused_naming_the_key(load, message):
     with pytest.raises(InputError, match=message):

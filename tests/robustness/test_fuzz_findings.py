@@ -1,0 +1,62 @@
+"""Findings of the long fuzz (tests/robustness/test_fuzz_api.py), each as its minimal reproducer."""
+import math
+
+import numpy as np
+import pytest
+
+import sim
+from sim.errors import ConfigError
+from sim.geometry import max_rollers
+
+
+def test_huge_pitch_diameter_is_counted_not_a_hang():
+    """bearing.Dpw = 1e300 (then in the schema's range, > 0 mm) looped for ever in max_rollers:
+    its round-off correction stepped z by 1 where z + 1 == z in floating point."""
+    assert max_rollers(1e300, 10.0, 0.05) > 2**53
+
+
+@pytest.mark.parametrize("Dpw, Dwe, web", [(60.0, 10.0, 0.05), (188.0, 10.0, 0.05), (100.0, 50.0, 0.0),
+                                           (1e6, 1.0, 0.5), (10.0, 10.0 * math.sin(math.pi / 7), 0.0)])
+def test_max_rollers_is_the_largest_z_that_fits(Dpw, Dwe, web):
+    """The count that max_rollers returns fits (Dpw sin(pi/Z) >= (1 + web) Dwe) and one more does not."""
+    z = max_rollers(Dpw, Dwe, web)
+    need = (1.0 + web) * Dwe
+    assert z >= 3 and Dpw * np.sin(np.pi / z) >= need and Dpw * np.sin(np.pi / (z + 1)) < need
+
+
+@pytest.mark.parametrize("override, fragment", [
+    ("bearing.surface.sigma=5e-324", "below 1 nm a surface is atomically smooth"),         # ZeroDivisionError
+    ("++bearing.surface.sigma_rib=5e-324", "below 1 nm a surface is atomically smooth"),   # (TRB) ZeroDivisionError
+    ("bearing.Dwe=5e-324", "1 um to 100 m spans every rolling bearing"),                   # OverflowError
+    ("bearing.Dpw=1e300", "1 um to 100 m spans every rolling bearing"),                    # hang
+    ("material.density=5e-324", "rolling-bearing materials"),                              # 250 s, not converged
+    ("material.E=1e300", "rolling-bearing materials"),                                     # not converged
+    ("lubricant.pressure_viscosity=0.1", "traction fluids to about 0.04 1/MPa"),           # 140-180 s, not converged
+    ("lubricant.eyring_stress=5e-324", "Eyring stresses are 1-20 MPa"),                    # ZeroDivisionError
+], ids=["sigma", "sigma_rib", "Dwe", "Dpw", "density", "E", "pressure_viscosity", "eyring_stress"])
+def test_degenerate_values_the_schema_allowed_are_refused_with_the_reason(override, fragment):
+    """Values the schema accepted that crashed, hung or could not converge (the fuzz's findings
+    at the ends of the ranges); the ranges are now physical, the refusal gives the reason."""
+    key = override.lstrip("+").split("=")[0]
+    with pytest.raises(ConfigError) as err:
+        sim.simulate(sim.load_config(["bearing=trb_31313", override]))
+    assert f"{key} = " in str(err.value) and fragment in str(err.value), str(err.value)
+
+
+def test_released_roller_of_a_tilted_trb_carries_nothing():
+    """TRB 32208 tilted 2 deg: rollers out of the load zone are released (Q = Q_rib = 0) and every
+    roller the solver reports loaded is in balance. (The returned pose of a released roller may
+    still touch the rib, 1016 N of rib contact if recomputed there: the fuzz's balance check
+    counts the reported loads, tests/helpers.roller_residuals(reported=True).)"""
+    from sim.api.cases import operating_points
+    from sim.api.simulation import build_models, resolved
+    from tests.helpers import roller_residuals
+
+    cfg = sim.load_config(["bearing=trb_32208", "load.tilt=2.0"])
+    model, _ = build_models(cfg)
+    op = operating_points(resolved(cfg)["load"])[0]
+    raw = model.solve(op)
+    assert raw["converged"]
+    released = raw["Q"].sum(axis=1) + raw["Q_rib"] == 0.0
+    assert released.any() and not released.all()
+    assert np.all(roller_residuals(model, raw, op, reported=True) < 1e-8)

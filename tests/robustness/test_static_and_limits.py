@@ -1,0 +1,203 @@
+"""The schema's ranges are the truth (issue 15, item 1).
+
+- ``load.speed = 0`` is the static case: the load distribution without centrifugal force and
+  gyroscopic moment, and friction as the zero-speed breakaway torque (sim.api.friction_model,
+  BREAKAWAY_NOMINAL_SPEED): no film, boundary friction mu_s on every contact along the slip
+  directions at the onset of motion; checked against closed forms (the TRB rib term, linearity
+  in mu_s), its independence of the lubricant, and continuity from small positive speeds.
+- The model's validity limits (solver.max_speed_dm, solver.max_static_load_ratio) refuse a case
+  just beyond them, before any solve, naming the key, its value, the allowed range and the
+  reason, and accept it at the bound. Degenerate in-range values (alpha underflowing to 0 rad,
+  the inputs that crashed before) end in a refusal or a result.
+"""
+import numpy as np
+import pytest
+
+import sim
+from sim.api.cases import operating_points
+from sim.api.friction_model import BREAKAWAY_NOMINAL_SPEED
+from sim.api.simulation import build_models, resolved
+from sim.errors import ConfigError, GeometryError, InputError
+from sim.physics import ratings
+from sim.physics.friction import COMPONENTS
+from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
+from tests.robustness.common import FAST, assert_refused, run
+
+NO_FILM = [COMPONENTS.index(c) for c in ("rolling", "hysteresis", "drag")]
+
+
+def _sim(*overrides):
+    return sim.simulate(sim.load_config(list(overrides)))
+
+
+def _one(ds, name):
+    return ds[name].values[0, 0]
+
+
+# ---------------------------------------------------------------------------- speed 0
+@pytest.mark.parametrize("bearing", ["tsrb_reference", "trb_32208"])
+@pytest.mark.parametrize("kinematics", ["traction", "rolling"])
+def test_breakaway_torque_is_finite_positive_and_boundary_friction(bearing, kinematics):
+    ds = _sim(f"bearing={bearing}", "load.speed=0", f"friction.kinematics={kinematics}")
+    assert _one(ds, "converged")
+    torque = _one(ds, "torque")
+    assert np.isfinite(torque) and torque > 0.0
+    parts = ds["torque_component"].values[0, 0]
+    assert np.all(parts[NO_FILM] == 0.0)               # no film, no rolling, no drag
+    assert parts.sum() == pytest.approx(torque, rel=1e-12)
+    assert _one(ds, "power_loss") == 0.0 and _one(ds, "cage_speed") == 0.0
+    film = ds["film_thickness"].values[0, 0]
+    assert np.all(film[np.isfinite(film)] == 0.0) and np.isfinite(film).any()
+    assert "breakaway" in ds["torque"].attrs["long_name"]
+
+
+def test_breakaway_torque_does_not_depend_on_the_lubricant():
+    """Boundary friction only: another oil, another temperature (viscosity about 10x) and another
+    pressure-viscosity law give the same torque to round-off."""
+    base = _sim("load.speed=0")
+    other = _sim("load.speed=0", "lubricant=pinion_oil", "load.oil_temperature=20",
+                 "lubricant.pressure_viscosity_model=barus")
+    assert _one(other, "torque") == pytest.approx(_one(base, "torque"), rel=1e-12)
+
+
+def _solved(*overrides):
+    cfg = sim.load_config(list(overrides))
+    model, friction = build_models(cfg)
+    op = operating_points(resolved(cfg)["load"])[0]
+    return model, friction, op, model.solve(op)
+
+
+def test_trb_rib_term_is_the_coulomb_sum():
+    """TRB 32208 under pure axial load, rolling kinematics: the rib's breakaway torque is
+    mu_s sum_j Q_rib,j |s_j| / omega_i, with s_j the sliding speed of roller end against rib
+    at the onset of motion (rolling kinematics (2.20), (2.22) at the nominal speed). The
+    Coulomb force is saturated there (|s| / v_s > 1e9), so the kernel sum equals it to round-off."""
+    model, friction, op, raw = _solved("bearing=trb_32208", "load.speed=0", "load.Fr=0",
+                                       "friction.kinematics=rolling")
+    g = model.geometry
+    fr = friction.evaluate(op, raw)
+    wi = float(angular_speed(BREAKAWAY_NOMINAL_SPEED))
+    wc = float(angular_speed(cage_speed_rolling(BREAKAWAY_NOMINAL_SPEED, 0.0, g.Dwe, g.Dpw, g.alpha)))
+    wR = float(angular_speed(roller_speed_rolling(BREAKAWAY_NOMINAL_SPEED, 0.0, g.Dwe, g.Dpw, g.alpha)))
+    f = raw["frames"]
+    X, C, U = f.Xrib, f.Cen, f.Ax
+    s = wR * (U[:, 1] * (X[:, 0] - C[:, 0]) - U[:, 0] * (X[:, 1] - C[:, 1])) - (wi - wc) * X[:, 0]
+    mu = float(sim.load_config([]).friction.solid_friction_coefficient)
+    expected = mu * np.sum(raw["Q_rib"] * np.abs(s)) / wi
+    assert raw["Q_rib"].min() > 0.0
+    assert fr["torque_component"][COMPONENTS.index("rib")] == pytest.approx(expected, rel=1e-9)
+
+
+@pytest.mark.parametrize("bearing", ["tsrb_reference", "trb_32208"])
+def test_breakaway_torque_is_linear_in_the_boundary_friction_coefficient(bearing):
+    """Without cage friction (so no friction load feeds back into the load distribution) and
+    with rolling kinematics every term is mu_s |s| Q: doubling mu_s doubles the torque."""
+    torques = [_one(_sim(f"bearing={bearing}", "load.speed=0", "friction.kinematics=rolling",
+                         "friction.cage_friction_coefficient=0", f"friction.solid_friction_coefficient={mu}"),
+                    "torque") for mu in (0.05, 0.1)]
+    assert torques[1] == pytest.approx(2.0 * torques[0], rel=1e-9)
+
+
+def test_small_speeds_approach_the_breakaway_torque():
+    """TSRB reference, traction kinematics, boundary friction fully developed at every slip
+    (friction.solid_slip_velocity = 1e-12 m/s, the slips being >= 1e-7 mm/s): at 1e-4 rpm the
+    film is 1e-5 of the roughness, so the torque less its rolling terms (EHL and hysteresis,
+    which the static case has not: no rolling) is the breakaway torque to within 1e-3
+    (measured 1e-5)."""
+    static = _one(_sim("load.speed=0"), "torque")
+    slow = _sim("load.speed=1e-4", "friction.solid_slip_velocity=1e-12")
+    assert _one(slow, "converged")
+    parts = slow["torque_component"].values[0, 0]
+    sliding = _one(slow, "torque") - parts[COMPONENTS.index("rolling")] - parts[COMPONENTS.index("hysteresis")]
+    assert sliding == pytest.approx(static, rel=1e-3)
+
+
+@pytest.mark.parametrize("bearing", ["tsrb_reference", "trb_32208"])
+def test_small_positive_speed_gives_a_finite_result(bearing):
+    ds = _sim(f"bearing={bearing}", "load.speed=1e-3")
+    assert _one(ds, "converged") and np.isfinite(_one(ds, "torque"))
+
+
+def test_speed_0_load_distribution_has_no_body_loads():
+    """The static load distribution is that of a running bearing with centrifugal force and
+    gyroscopic moment switched off (to round-off: the same equations)."""
+    static = _sim("load.speed=0", *FAST)
+    running = _sim("load.speed=2000", *FAST, "solver.centrifugal=false", "solver.gyroscopic=false")
+    np.testing.assert_allclose(static["Q"].values, running["Q"].values, rtol=1e-12)
+
+
+# ---------------------------------------------------------------------------- validity limits
+def _limits(bearing):
+    cfg = sim.load_config([f"bearing={bearing}"])
+    model, _ = build_models(cfg)
+    return model.geometry, model.settings
+
+
+@pytest.mark.parametrize("bearing", ["tsrb_reference", "trb_32208"])
+def test_speed_limit_at_and_beyond_the_bound(bearing):
+    g, s = _limits(bearing)
+    top = s.max_speed_dm / g.Dpw
+    assert _one(_sim(f"bearing={bearing}", f"load.speed={top!r}", *FAST), "converged")
+    beyond = float(np.nextafter(top, np.inf)) * (1.0 + 1e-12)
+    with pytest.raises(InputError) as err:
+        _sim(f"bearing={bearing}", f"load.speed={beyond!r}", *FAST)
+    message = str(err.value)
+    for fragment in ("load.speed = ", "outside the allowed range", f"{top:g} rpm", "solver.max_speed_dm",
+                     "quasi-static"):
+        assert fragment in message, (fragment, message)
+
+
+def _static_bound(g, s, Fr):
+    """Largest Fa [N] with P0 <= max_static_load_ratio C0 at both angles the check uses."""
+    bounds = []
+    for angle in {g.ratings_alpha, float(np.degrees(g.cup_angle))}:
+        C0 = ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, angle)
+        f = ratings.load_factors(angle)
+        bounds.append((s.max_static_load_ratio * C0 - f["X0"] * Fr) / f["Y0"])
+    return min(bounds)
+
+
+@pytest.mark.parametrize("bearing", ["tsrb_reference", "trb_32208"])
+def test_static_load_limit_at_and_beyond_the_bound(bearing):
+    g, s = _limits(bearing)
+    Fr = 2000.0
+    top = _static_bound(g, s, Fr)
+    ds = _sim(f"bearing={bearing}", f"load.Fa={top * (1 - 1e-9)!r}", f"load.Fr={Fr}", *FAST)
+    assert _one(ds, "P0") <= s.max_static_load_ratio * float(ds["C0"].values[0]) * (1 + 1e-9)
+    with pytest.raises(InputError) as err:
+        _sim(f"bearing={bearing}", f"load.Fa={top * (1 + 1e-6)!r}", f"load.Fr={Fr}", *FAST)
+    message = str(err.value)
+    for fragment in ("load.Fa = ", "outside the allowed range", f"<= {top:.6g} N", "solver.max_static_load_ratio",
+                     "ISO 76", "4000 MPa"):
+        assert fragment in message, (fragment, message)
+
+
+def test_radial_load_beyond_C0_blames_Fr():
+    g, s = _limits("trb_32208")
+    C0 = min(ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, a) for a in (g.ratings_alpha,))
+    with pytest.raises(InputError, match=r"load\.Fr = .* outside the allowed range"):
+        _sim("bearing=trb_32208", f"load.Fr={1.01 * C0 * s.max_static_load_ratio!r}", "load.Fa=1", *FAST)
+
+
+@pytest.mark.parametrize("overrides, error, fragment", [
+    (["load.speed=40000"], InputError, "load.speed = 40000 rpm"),
+    (["load.speed=66641.87"], InputError, "load.speed = 66641.9 rpm"),
+    (["load.Fa=1e7"], InputError, "load.Fa = 1e+07 N"),
+    (["bearing.alpha=5.4e-89"], InputError, "contact angle 6.3e-89 deg"),
+    (["bearing=trb_32208", "bearing.alpha=5.4e-89"], InputError, "load.Fa = 4500 N"),
+    (["bearing.alpha=5e-324"], GeometryError, "bearing.alpha = 5e-324 is impossible: it underflows"),
+    (["solver.max_static_load_ratio=0"], ConfigError, "solver.max_static_load_ratio = 0"),
+    (["solver.max_speed_dm=3e6"], ConfigError, "solver.max_speed_dm = 3000000"),
+], ids=["speed_40000", "speed_66641", "Fa_1e7", "alpha_tiny", "trb_alpha_tiny", "alpha_underflow",
+        "load_ratio_0", "dm_3e6"])
+def test_inputs_that_crashed_are_refused(overrides, error, fragment):
+    with pytest.raises(error) as err:
+        _sim(*overrides)
+    assert fragment in str(err.value), str(err.value)
+
+
+def test_command_line_refuses_a_load_beyond_the_static_limit(tmp_path):
+    out = run(["-m", "sim.run", "load.Fa=1e7", *FAST, f"hydra.run.dir={tmp_path / 'run'}", "output.cache_dir=null"],
+              tmp_path)
+    assert_refused(out, "load.Fa = 1e+07 N is outside the allowed range", "solver.max_static_load_ratio")
+    assert not (tmp_path / "run").exists()
