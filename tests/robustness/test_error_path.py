@@ -121,6 +121,19 @@ def test_optimize_refused_after_the_references_removes_the_folder_it_made(tmp_pa
     assert not (tmp_path / "outputs").exists()
 
 
+# ---------------------------------------------------------------------------- python -m studies.workers
+@pytest.mark.parametrize("args, fragments", [
+    (["run", "-n", "0"], ["-n/--workers = 0 is outside the allowed range", ">= 1"]),
+    (["create", "study.load.Fa=-5"], ["study.load.Fa = -5.0 is outside the allowed range"]),
+    (["work", "study.workers.max_retry=-1"], ["study.workers.max_retry = -1"]),
+    (["report", "study.sampler=simplex"], ["study.sampler = 'simplex'"]),
+], ids=["no_workers", "Fa_negative", "max_retry", "sampler"])
+def test_workers_refuse_in_one_line_and_make_no_folder(tmp_path, args, fragments):
+    out = run(["-m", "studies.workers", *args], tmp_path)
+    assert_refused(out, *fragments)
+    assert not (tmp_path / "outputs").exists()
+
+
 # ---------------------------------------------------------------------------- python -m studies.validation
 def test_validation_refuses_an_output_path_that_is_a_file(tmp_path):
     target = tmp_path / "report"
@@ -147,4 +160,4 @@ def test_every_entry_point_is_covered():
     mains = {p.relative_to(REPO).as_posix() for p in list((REPO / "sim").rglob("*.py"))
              + list((REPO / "studies").rglob("*.py")) if 'if __name__ == "__main__":' in p.read_text()}
     assert mains == {"sim/run.py", "sim/api/sweep.py", "studies/optimize.py", "studies/sensitivity.py",
-                     "studies/validation.py"}
+                     "studies/validation.py", "studies/workers.py"}
