@@ -42,6 +42,16 @@ def missing(what):
     pytest.skip(f"{what} is not installed (CI installs it: .ci/run)")
 
 
+def stop(process, sig, timeout=30):
+    """Send ``sig`` to a server process and wait ``timeout`` s for it to exit; then kill it."""
+    process.send_signal(sig)
+    try:
+        process.wait(timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+
+
 def free_port():
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
@@ -81,12 +91,7 @@ def postgres_server():
                 time.sleep(0.1)
         yield "127.0.0.1", port
     finally:
-        server.send_signal(signal.SIGINT)  # fast shutdown: open client connections are closed
-        try:
-            server.wait(30)
-        except subprocess.TimeoutExpired:
-            server.kill()
-            server.wait()
+        stop(server, signal.SIGINT)  # fast shutdown: open client connections are closed
         log.close()
         shutil.rmtree(root, ignore_errors=True)
 

@@ -26,7 +26,7 @@ import xarray as xr
 from omegaconf import OmegaConf
 
 from sim.api.sweep import CACHE_SUFFIX, cache_file, operating_points
-from tests.scale.conftest import free_port, missing
+from tests.scale.conftest import free_port, missing, stop
 from tests.sweeps.common import REPO, SWEEP, multirun
 
 pytestmark = pytest.mark.slurm
@@ -98,12 +98,7 @@ def slurm_env():
     finally:
         subprocess.run([program("scancel"), "--full", "-p", "test"], env=env, capture_output=True)
         for d in reversed(daemons):
-            d.send_signal(signal.SIGTERM)
-            try:
-                d.wait(30)
-            except subprocess.TimeoutExpired:
-                d.kill()
-                d.wait()
+            stop(d, signal.SIGTERM)
         log.close()
         shutil.rmtree(root, ignore_errors=True)
 
