@@ -59,6 +59,7 @@ def test_load_centroid_at_PCR_sin_gamma(model_for):
         np.testing.assert_allclose(centroid, x_star, rtol=0.10)
 
 
+@pytest.mark.smoke
 def test_command_line_writes_checked_result(tmp_path):
     """The documented command line writes result.nc in Hydra's run directory, and the file
     passes the project's contract checker (../shared/tools/check_result.py) when present."""

@@ -35,6 +35,7 @@ def test_files_exist_and_the_report_links_each_figure(report):
     assert "Timken" in text and "not available" in text
 
 
+@pytest.mark.smoke
 def test_netcdf_holds_the_plotted_variables_with_units(report):
     _, ds, _ = report
     plotted = ("torque_trb_32208", "torque_component_trb_32208", "torque_skf", "torque_aihara_rolling",

@@ -4,12 +4,14 @@ import json
 
 import matplotlib
 import numpy as np
+import pytest
 
 from tests.sweeps.common import REPO
 
 NOTEBOOK = REPO / "notebooks" / "sweep_analysis.ipynb"
 
 
+@pytest.mark.smoke
 def test_notebook_runs_on_a_sweep(parallel_sweep, monkeypatch):
     matplotlib.use("Agg")
     monkeypatch.setenv("SWEEP_NC", str(parallel_sweep.nc))
