@@ -20,9 +20,7 @@ small by doing once per configuration what does not depend on the case:
 """
 import concurrent.futures as cf
 import math
-import multiprocessing
 import os
-import sys
 import time
 from collections import OrderedDict
 
@@ -31,6 +29,7 @@ from omegaconf import OmegaConf
 from sim.api.bearing_model import BearingModel, SolverSettings, case_results
 from sim.api.cases import operating_points
 from sim.api.friction_model import FrictionModel
+from sim.api.processes import worker_pool
 from sim.api.schema import validate
 from sim.errors import InputError
 from sim.geometry import Geometry
@@ -264,20 +263,17 @@ def default_workers():
         return os.cpu_count() or 1
 
 
-START_METHOD = "fork" if sys.platform.startswith("linux") else "spawn"   # of the workers (_run_pool)
-
-
 def _run_pool(cfgs, plains, tasks, workers):
     """Outcomes of ``tasks`` (design, start, stop, with_yaml) on ``workers`` processes, in order.
 
-    On Linux the workers are forked (they start with the kernels warmed here and the configs,
+    The pool is :func:`sim.api.processes.worker_pool` (its workers die with this process). On
+    Linux the workers are forked (they start with the kernels warmed here and the configs,
     nothing pickled); elsewhere spawned (fork is unsafe on macOS, absent on Windows: they load
     the kernels from numba's on-disk cache, and the configs are pickled once per worker). A
     worker that dies fails the designs of its unfinished tasks.
     """
     outcomes = [None] * len(tasks)
-    with cf.ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context(START_METHOD),
-                                initializer=_init_worker, initargs=(cfgs, plains)) as pool:
+    with worker_pool(workers, _init_worker, (cfgs, plains)) as pool:
         futures = {pool.submit(_run_in_worker, *task): i for i, task in enumerate(tasks)}
         for future in cf.as_completed(futures):
             try:

@@ -16,7 +16,7 @@ import sim
 from sim import io
 from sim.api import simulate_batch
 from sim.api.cases import operating_points
-from sim.api import simulation
+from sim.api import processes
 from sim.api.simulation import simulate
 from tests.sweeps.common import FAST, REPO
 
@@ -135,7 +135,7 @@ def test_spawned_workers_agree(monkeypatch):
     """Where the workers cannot be forked (macOS, Windows) they are spawned: the configs reach
     them pickled and the kernels come from numba's cache; the result is the same."""
     cfgs = configs([*FAST, "load.Fa=[3000,5000]", "load.Fr=0"], [*FAST, "bearing.PCR=8", "load.Fa=3000", "load.Fr=0"])
-    monkeypatch.setattr(simulation, "START_METHOD", "spawn")
+    monkeypatch.setattr(processes, "START_METHOD", "spawn")
     spawned = simulate_batch(cfgs, workers=2)
     here = simulate_batch(cfgs, workers=1)
     xr.testing.assert_identical(spawned.drop_vars("wall_time").drop_attrs(), here.drop_vars("wall_time").drop_attrs())
