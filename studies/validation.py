@@ -403,18 +403,13 @@ SENSITIVITY_OUTPUTS = {"TRB 32208 at 4.5 kN [N mm]": "N*mm", "TRB 32208 at 40 kN
                        "n (4.5-40 kN, two points)": "1", "prototype / TRB at the largest Fig. 6.8 load": "1"}
 
 
-def _base_value(key, bearing):
-    """The value of ``key`` in the composed config of ``bearing`` (None when the bearing has no such key)."""
-    cfg = sim.load_config([f"bearing={bearing}"])
-    node = OmegaConf.select(cfg, key)
-    return None if node is None else float(node)
-
-
 def sensitivity(quick, speed, temperature, rig_loads):
     """Section e: the outputs of :data:`SENSITIVITY_OUTPUTS` with each ASSUMED parameter at the low
-    and high end of its cited range, the others at their config values (one at a time)."""
+    and high end of its cited range, the others at their config values (one at a time). A key
+    changes the bearings whose composed config has it (the rib keys only the TRB)."""
     keys = [row for row in SENSITIVITY if not quick or row[0] in QUICK_SENSITIVITY]
     F_rig = max(rig_loads)
+    composed = {b: sim.load_config([f"bearing={b}"]) for b in ("trb_32208", "tsrb_prototype")}
 
     def outputs(extra_trb, extra_proto):
         trb, _ = _pure_axial("trb_32208", sorted(set(SENSITIVITY_LOADS) | {F_rig}), speed, temperature, extra_trb)
@@ -426,19 +421,15 @@ def sensitivity(quick, speed, temperature, rig_loads):
     base = outputs((), ())
     rows = []
     for key, low, high, source in keys:
-        values, table = [], []
-        for value in (low, None, high):
-            if value is None:
-                values.append(_base_value(key, "trb_32208") if _base_value(key, "trb_32208") is not None
-                              else _base_value(key, "tsrb_prototype"))
-                table.append(base)
-                continue
+        found = {b: OmegaConf.select(cfg, key) for b, cfg in composed.items()}
+        base_value = float(next(v for v in found.values() if v is not None))
+
+        def runs(value):
             over = [f"{key}={value:g}"]
-            values.append(value)
-            has_trb = _base_value(key, "trb_32208") is not None
-            has_proto = _base_value(key, "tsrb_prototype") is not None
-            table.append(outputs(over if has_trb else (), over if has_proto else ()))
-        rows.append((key, values, source, table))
+            return outputs(over if found["trb_32208"] is not None else (),
+                           over if found["tsrb_prototype"] is not None else ())
+
+        rows.append((key, [low, base_value, high], source, [runs(low), base, runs(high)]))
     return {"rows": rows}
 
 
