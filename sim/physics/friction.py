@@ -321,13 +321,11 @@ def lubrication_state(wR, wc, wi, active, case):
                 if par.boundary_only:
                     # no entrainment, no film: the solid carries the contact (Phi = 1, boundary
                     # friction), no EHL rolling force and, without rolling, no hysteresis loss;
-                    # the film viscosity is never read with Phi = 1 ((1 - Phi) tau_lub = 0)
+                    # Eta is left as it is: the traction laws never read it without a film
                     h[j, s, k] = 0.0
                     Phi[j, s, k] = 1.0
                     Fh[j, s, k] = 0.0
                     Fy[j, s, k] = 0.0
-                    for i in range(cos_t.shape[0]):
-                        Eta[j, s, k, i] = 0.0
                     continue
                 # inlet shear heating thins the film and lowers the Poiseuille rolling force alike
                 # (Zhou & Hoeprich 1991 eq. 22, factor of Gupta et al. 1992)
