@@ -65,6 +65,7 @@ DESIGN_COORDS = {
     "gamma": ("deg", "taper angle (2.1)"), "aA": ("mm", "bearing axis to the centre of PCR (derived)"),
     "PCR_LB": ("mm", "raceway profile curve radius (derived)"),
 }
+# case coordinates (DATA.md), in the order of sim.api.OperatingPoint.values()
 CASE_COORDS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
 # a point without a result (failed, not computed) holds these; every other variable NaN
 FILL_VALUES = {"converged": False, "edge_stress": False, "iterations": 0}
@@ -122,8 +123,9 @@ CASE_COORD_ATTRS = {"Fa": ("N", "axial load"), "Fr": ("N", "radial load"), "spee
 
 def case_coords(ops):
     """Case coordinates (DATA.md) of a list of sim.api.simulation.OperatingPoint."""
-    return {name: ("case", [getattr(o, name) for o in ops], {"units": units, "long_name": long_name})
-            for name, (units, long_name) in CASE_COORD_ATTRS.items()}
+    values = [o.values() for o in ops]   # in CASE_COORDS order
+    return {name: ("case", [v[i] for v in values], {"units": units, "long_name": long_name})
+            for i, (name, (units, long_name)) in enumerate((c, CASE_COORD_ATTRS[c]) for c in CASE_COORDS)}
 
 
 SOURCES = ("thesis; ISO281; ISO/TS16281; Johnson1985; TeutschSauer2004; ZhouHoeprich1991; PanHamrock1989; "
@@ -451,10 +453,6 @@ def _design_coordinates(design):
     return values
 
 
-def _case_key(op):
-    return tuple(float(getattr(op, c)) for c in CASE_COORDS)
-
-
 def build_batch_dataset(designs):
     """One ``design`` x ``case`` Dataset (DATA.md) of many designs, built once from arrays.
 
@@ -473,7 +471,7 @@ def build_batch_dataset(designs):
     designs : list of DesignResult or DesignFailure
     """
     n_designs = len(designs)
-    keys = [[_case_key(op) for op in d.ops] for d in designs]
+    keys = [[op.values() for op in d.ops] for d in designs]
     union = list(dict.fromkeys(k for ks in keys for k in ks))
     index = {k: i for i, k in enumerate(union)}
     n_cases = len(union)

@@ -58,7 +58,7 @@ def roller_residuals(model, raw, op, ext=None, reported=False):
         state.pose[:] = raw["poses"][j]
         state.q[:] = raw["line_load"][j]
         state.active[:] = state.q > 0
-        roller_contact(raw["ring"], np.radians(op.tilt) * np.cos(psi), np.cos(psi), model.bearing, model.elasticity,
+        roller_contact(raw["ring"], np.radians(op.tilt_deg) * np.cos(psi), np.cos(psi), model.bearing, model.elasticity,
                        state)
         f, Q = state.f, state.Q
         if Q[0] + Q[1] == 0.0 or (reported and raw["Q"][j].sum() + raw["Q_rib"][j] == 0.0):

@@ -7,6 +7,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from sim import io
 from sim.config_schema import LoadConfig, SolverConfig, check_node
 from sim.errors import InputError
 from sim.geometry import Geometry
@@ -31,19 +32,22 @@ APPROACH_LOG_TERM = 8.0
 # 1 / continuation_steps, and at most 2 x continuation_steps solves.
 CONTINUATION_FIRST_STEP = 0.25
 
-#: Keys of one load case, in the order of OperatingPoint's fields.
-LOAD_CASE_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
+#: Keys of one load case in the config and the Dataset (DATA.md case coordinates), in the order
+#: of OperatingPoint's fields.
+LOAD_CASE_KEYS = io.CASE_COORDS
 
 
 @dataclass(frozen=True)
 class OperatingPoint:
-    """One load case (degrees and rpm at this edge; converted for the kernels)."""
+    """One load case at the user's edge, in the config's units (N, rpm, deg, degC); the field
+    names carry the units that differ from the kernels' SI (rad/s, rad), which are converted
+    where the kernels are called."""
 
-    Fa: float
-    Fr: float
-    speed: float
-    tilt: float
-    oil_temperature: float
+    Fa: float               # N
+    Fr: float               # N
+    speed_rpm: float        # inner-ring speed
+    tilt_deg: float         # imposed inner-ring tilt
+    oil_temperature: float  # degC
 
     @classmethod
     def from_config(cls, load):
@@ -52,6 +56,10 @@ class OperatingPoint:
         value and allowed range."""
         check_node(LoadConfig, load, "load", keys=LOAD_CASE_KEYS, scalar=True, error=InputError)
         return cls(*(float(load[k]) for k in LOAD_CASE_KEYS))
+
+    def values(self):
+        """The case as a tuple of floats in :data:`LOAD_CASE_KEYS` order (its config/Dataset keys)."""
+        return tuple(float(getattr(self, f.name)) for f in fields(self))
 
 
 @dataclass(frozen=True)
@@ -122,8 +130,8 @@ class BearingModel:
         """
         g = self.geometry
         s = self.settings
-        if op.speed > s.max_speed_dm / g.Dpw:
-            raise InputError(f"load.speed = {op.speed:g} rpm is outside the allowed range for this bearing: "
+        if op.speed_rpm > s.max_speed_dm / g.Dpw:
+            raise InputError(f"load.speed = {op.speed_rpm:g} rpm is outside the allowed range for this bearing: "
                              f"<= solver.max_speed_dm / Dpw = {s.max_speed_dm:g} / {g.Dpw:g} = "
                              f"{s.max_speed_dm / g.Dpw:g} rpm (beyond it roller and cage dynamics and the bearing's "
                              "heat balance govern, which the quasi-static model lacks; conf/solver/quasi_static.yaml)")
@@ -160,8 +168,8 @@ class BearingModel:
         """Body loads on a loaded roller, rolling kinematics (2.20), (2.22): BodyLoads(centrifugal
         force m omega_c^2 Dpw/2 [N], gyroscopic moment I_x omega_R omega_c sin(alpha) [N mm])."""
         g = self.geometry
-        omega_c = angular_speed(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))
-        omega_r = angular_speed(roller_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha))
+        omega_c = angular_speed(cage_speed_rolling(op.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha))
+        omega_r = angular_speed(roller_speed_rolling(op.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha))
         Fc = g.arrays["mass"] * omega_c**2 * 0.5 * g.Dpw if self.settings.centrifugal else 0.0
         Mg = g.arrays["inertia_axial"] * omega_r * omega_c * np.sin(g.alpha) if self.settings.gyroscopic else 0.0
         return BodyLoads(float(Fc), float(Mg))
@@ -238,7 +246,7 @@ class BearingModel:
             return bool(report.converged)
 
         ext_case = ext.copy()
-        tilt_rad = np.radians(op.tilt)  # op.tilt in degrees
+        tilt_rad = np.radians(op.tilt_deg)
         t0 = time.perf_counter()
         converged = False
         iterations = 0
@@ -264,7 +272,7 @@ class BearingModel:
             # down to 1 / continuation_steps
             saved = None
             lam, dlam = 0.0, CONTINUATION_FIRST_STEP
-            ring = self.initial_ring(OperatingPoint(op.Fa, 0.0, op.speed, 0.0, op.oil_temperature))
+            ring = self.initial_ring(OperatingPoint(op.Fa, 0.0, op.speed_rpm, 0.0, op.oil_temperature))
             ext[:] = 0.0
             ok = run(op.Fa, 0.0, 0.0, ring, False)
             iterations += reports[-1].iterations
@@ -330,7 +338,7 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
         return res
     p = raw["pressure"]                       # (Z, 2, N) MPa
     j = int(np.argmax(raw["Q"].sum(axis=1)))  # most loaded roller
-    xi_rel = roller_shift_relative_to_inner_ring(g, raw["poses"][:, 0], raw["ring"], np.radians(op.tilt))
+    xi_rel = roller_shift_relative_to_inner_ring(g, raw["poses"][:, 0], raw["ring"], np.radians(op.tilt_deg))
     thr = float(output_cfg["contact_pressure_threshold"])
     loaded = p[j] > thr                       # (2, N)
     length = loaded.sum(axis=1) * w           # (2,) mm
@@ -353,7 +361,7 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
         roller_axial_displacement=xi_rel,
         C_eff=C_eff,
         L10=float(ratings.basic_rating_life(C_eff, P)) if C_eff > 0 else 0.0,
-        cage_speed=float(cage_speed_rolling(op.speed, 0.0, g.Dwe, g.Dpw, g.alpha)),
+        cage_speed=float(cage_speed_rolling(op.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha)),
         residual=raw["residual"],
     )
     return res

@@ -123,7 +123,7 @@ class FrictionModel:
         and ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s],
         :data:`sim.solvers.kinematics.KinematicJacobian`).
 
-        At ``op.speed == 0`` the torque is the zero-speed breakaway torque (BREAKAWAY_NOMINAL_SPEED):
+        At ``op.speed_rpm == 0`` the torque is the zero-speed breakaway torque (BREAKAWAY_NOMINAL_SPEED):
         boundary friction along the slip directions at the onset of motion, power loss 0, cage
         and roller speeds 0, no film; ``start`` is not used.
         """
@@ -135,8 +135,8 @@ class FrictionModel:
             eta0=eta0, Z=float(roelands_index(eta0, self.par.alpha)),
             beta=float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature)),
             drag_k=self.drag_factor * float(self.lubricant.density(op.oil_temperature)))
-        static = op.speed == 0.0
-        speed = BREAKAWAY_NOMINAL_SPEED if static else op.speed
+        static = op.speed_rpm == 0.0
+        speed = BREAKAWAY_NOMINAL_SPEED if static else op.speed_rpm
         wi = float(angular_speed(speed))
         if static:   # no film, Coulomb friction wherever a contact slips; no drag (it goes as the speed squared)
             par = par._replace(v_s=BREAKAWAY_SLIP_RESOLUTION * wi * 0.5 * g.Dpw, drag_k=0.0, boundary_only=True)
@@ -152,7 +152,7 @@ class FrictionModel:
             wc, wR, jac = start[0], start[1].copy(), start[2]
         load = raw["Q"].sum(axis=1)
         # the rollers one solution stands for: the classes of the quasi-static solve (sim.solvers.symmetry)
-        _, weight, source = symmetry_classes(Z, float(op.Fr), float(np.radians(op.tilt)), raw["roller_loads"])
+        _, weight, source = symmetry_classes(Z, float(op.Fr), float(np.radians(op.tilt_deg)), raw["roller_loads"])
         # rollers below the kinematic tolerance of the most loaded one cannot move the balances
         active = (load > self.tolerance * load.max()) & (weight > 0.0)
         shape = (Z, 2, n)

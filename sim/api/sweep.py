@@ -113,7 +113,7 @@ def _key_base(cfg):
 
 def case_key(base, op):
     """Cache key of one load case ``op`` (sim.api.simulation.OperatingPoint) of a config (``_key_base``)."""
-    payload = dict(base, case=[op.Fa, op.Fr, op.speed, op.tilt, op.oil_temperature])
+    payload = dict(base, case=list(op.values()))
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()
 
 
@@ -218,7 +218,7 @@ def _cached(path, op):
         if ds.sizes.get("case") != 1 or not bool(ds["converged"].all()):
             raise ValueError("not one converged case")
         case = [float(ds[name].values[0]) for name in io.CASE_COORDS]
-        if case != [op.Fa, op.Fr, op.speed, op.tilt, op.oil_temperature]:
+        if case != list(op.values()):
             raise ValueError(f"holds case {case}, not {op}")
         return ds
     except Exception as exc:  # a damaged entry is recomputed, never trusted
@@ -473,7 +473,7 @@ def _store(path, ds):
 
 
 def _simulate_case(cfg, op, path):
-    cfg.load.update(Fa=op.Fa, Fr=op.Fr, speed=op.speed, tilt=op.tilt, oil_temperature=op.oil_temperature, zip=[])
+    cfg.load.update(dict(zip(io.CASE_COORDS, op.values())), zip=[])
     ds = simulate(cfg)
     log.debug("computed case %s %s", path.stem if path is not None else "(no cache)", op)
     if path is not None and bool(ds.converged.all()):
@@ -824,7 +824,7 @@ def result_problem(ds, cfg):
     absent = [c for c in io.CASE_COORDS if c not in ds.coords]
     if absent:
         return f"no case coordinate {', '.join(absent)}"
-    want = sorted((o.Fa, o.Fr, o.speed, o.tilt, o.oil_temperature) for o in operating_points(cfg.load))
+    want = sorted(o.values() for o in operating_points(cfg.load))
     got = sorted(_case_tuples(ds))
     if got != want:
         return f"holds {len(got)} cases that are not the job's {len(want)} (a result of another job or run?)"
@@ -958,7 +958,7 @@ def _failure_rows(ds, jobs, configs, designs, outcomes):
     for i, (job, (job_ds, reason, message)) in enumerate(zip(jobs, outcomes)):
         d = design_of[i]
         points = _case_tuples(job_ds) if job_ds is not None else [
-            (o.Fa, o.Fr, o.speed, o.tilt, o.oil_temperature) for o in operating_points(configs[i].load)]
+            o.values() for o in operating_points(configs[i].load)]
         for c in (case_index[t] for t in points):
             if job_ds is not None:
                 if bool(ds.converged.values[d, c]):

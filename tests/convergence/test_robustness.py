@@ -88,7 +88,7 @@ def _system_balance(model, raw, op, ext):
     the others) and the outer raceway's slice loads on the rollers (-q w n, n into the ring)."""
     g = model.geometry
     body = model.body_loads(op)
-    Fx_out, Fz_out = race_forces(model, raw, 0, op.tilt)
+    Fx_out, Fz_out = race_forces(model, raw, 0, op.tilt_deg)
     Fx, Fz = op.Fr - Fx_out, op.Fa - Fz_out
     for j in range(g.Z):
         if raw["Q"][j].sum() == 0.0:

@@ -189,7 +189,7 @@ def check_result(cfg, ds):
     assert np.all(np.abs(raw["residual"]) <= tol * scale), raw["residual"]
     residuals = roller_residuals(model, raw, op, reported=True)
     assert np.all(residuals < tol), residuals
-    if model.geometry.type == "TSRB" and op.tilt == 0.0:
+    if model.geometry.type == "TSRB" and op.tilt_deg == 0.0:
         Fx, Fz = race_forces(model, raw, 1, 0.0)
         np.testing.assert_allclose([Fx + op.Fr, Fz + op.Fa], 0.0, atol=tol * scale)
 

@@ -9,7 +9,7 @@ from sim.api import InputError
 
 def cases(**load):
     base = {"Fa": 4000.0, "Fr": 0.0, "speed": 2000.0, "tilt": 0.0, "oil_temperature": 55.0}
-    return [(o.Fa, o.Fr, o.speed, o.tilt, o.oil_temperature)
+    return [o.values()
             for o in operating_points(OmegaConf.create(base | load))]
 
 
@@ -45,7 +45,7 @@ def test_impossible_grids_are_refused_naming_the_key(load, message):
 
 
 def grid(name):
-    return [(o.Fa, o.Fr, o.speed, o.tilt) for o in operating_points(sim.load_config([f"load={name}"]).load)]
+    return [o.values()[:4] for o in operating_points(sim.load_config([f"load={name}"]).load)]
 
 
 def test_thesis_grids():
