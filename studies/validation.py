@@ -269,7 +269,7 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
 
     components = [str(c) for c in trb.component.values]
     ds = xr.Dataset(coords={
-        "Fa": ("Fa", np.array(loads), {"units": "N", "long_name": "axial load (TRB 32208 sweep)"}),
+        "Fa_sweep": ("Fa_sweep", np.array(loads), {"units": "N", "long_name": "axial load (TRB 32208 sweep)"}),
         "component": ("component", components, {"long_name": "torque component (DATA.md)"}),
         "Fa_thesis": ("Fa_thesis", np.array(sorted(THESIS_TRB_32208)),
                       {"units": "N", "long_name": "axial load of the thesis values"}),
@@ -278,7 +278,7 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
         "Fa_rig": ("Fa_rig", np.array(rig_loads), {"units": "N", "long_name": "axial load (thesis Fig. 6.8, Fr = 0)"}),
         "Fr_rig": ("Fr_rig", np.array(radial),
                    {"units": "N", "long_name": f"radial load (thesis Fig. 6.9, Fa = {Fa69 / 1e3:g} kN)"}),
-        "srr": ("srr", srr, {"units": "1", "long_name": "slide-to-roll ratio (U1 - U2)/u"}),
+        "srr_disc": ("srr_disc", srr, {"units": "1", "long_name": "slide-to-roll ratio (U1 - U2)/u"}),
         "u": ("u", np.array(TWIN_DISC_U), {"units": "m/s", "long_name": "entrainment speed (U1 + U2)/2"}),
         "law": ("law", laws, {"long_name": "traction law (sim.physics.ehl function)"}),
     })
@@ -287,14 +287,14 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
         ds[name] = (dims, np.asarray(values, dtype=float), {"units": units, "long_name": long_name})
 
     # a.
-    put("torque_trb_32208", "Fa", [_pick(trb, "torque", Fa=F) for F in loads], "N*mm", "TRB 32208 torque, this model")
-    put("torque_component_trb_32208", ("Fa", "component"), [_pick(trb, "torque_component", Fa=F) for F in loads],
+    put("torque_trb_32208", "Fa_sweep", [_pick(trb, "torque", Fa=F) for F in loads], "N*mm", "TRB 32208 torque, this model")
+    put("torque_component_trb_32208", ("Fa_sweep", "component"), [_pick(trb, "torque_component", Fa=F) for F in loads],
         "N*mm", "TRB 32208 torque by component, this model")
-    put("torque_skf", "Fa", ref["skf"], "N*mm", "TRB 32208 torque, SKF 2004 (rolling + sliding)")
-    put("torque_skf_rolling", "Fa", ref["skf_rolling"], "N*mm", "SKF 2004 rolling moment M_rr")
-    put("torque_skf_sliding", "Fa", ref["skf_sliding"], "N*mm", "SKF 2004 sliding moment M_sl")
-    put("torque_aihara_rolling", "Fa", ref["aihara_rolling"], "N*mm", "Aihara 1987 rolling term (transcription)")
-    put("torque_aihara_rib", ("Fa", "rib_film"), ref["aihara_rib"], "N*mm", "Aihara 1987 rib term, cos(beta) = 1")
+    put("torque_skf", "Fa_sweep", ref["skf"], "N*mm", "TRB 32208 torque, SKF 2004 (rolling + sliding)")
+    put("torque_skf_rolling", "Fa_sweep", ref["skf_rolling"], "N*mm", "SKF 2004 rolling moment M_rr")
+    put("torque_skf_sliding", "Fa_sweep", ref["skf_sliding"], "N*mm", "SKF 2004 sliding moment M_sl")
+    put("torque_aihara_rolling", "Fa_sweep", ref["aihara_rolling"], "N*mm", "Aihara 1987 rolling term (transcription)")
+    put("torque_aihara_rib", ("Fa_sweep", "rib_film"), ref["aihara_rib"], "N*mm", "Aihara 1987 rib term, cos(beta) = 1")
     put("torque_thesis", "Fa_thesis", [THESIS_TRB_32208[F] for F in sorted(THESIS_TRB_32208)], "N*mm",
         "TRB 32208 torque of the thesis's rig-validated model (7.2.5)")
     skf45 = reference_torques([4500.0], temperature=temp, speed=speed)["skf"][0]
@@ -344,7 +344,7 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
     put("ratio_pinion_thesis", (), 1.0 + PINION_EXCESS, "1", "thesis 7.4: TSRB / TRB 31313 torque (+367 %)")
 
     # d.
-    put("traction_coefficient", ("law", "u", "srr"), mu, "1",
+    put("traction_coefficient", ("law", "u", "srr_disc"), mu, "1",
         f"traction coefficient, line contact p_h {TWIN_DISC['p_h']:g} MPa, {TWIN_DISC['temperature']:g} degC, FVA 3")
     put("film_thickness_twin_disc", "u", h_disc, "um", "central film thickness of the twin-disc contact")
     data = load_traction_data(traction_data)
@@ -452,7 +452,7 @@ def targets(ds):
 
     issue = "issue 14 target"
     for F in ds.Fa_thesis.values:
-        value = float(ds.torque_trb_32208.sel(Fa=F)) if F in ds.Fa.values else np.nan
+        value = float(ds.torque_trb_32208.sel(Fa_sweep=F)) if F in ds.Fa_sweep.values else np.nan
         row(f"TRB 32208 torque at {F / 1e3:g} kN", issue, value, float(ds.band_low.sel(Fa_thesis=F)),
             float(ds.band_high.sel(Fa_thesis=F)), "N*mm",
             "0.6 x thesis to 1.2 x SKF 2004" if F == 4500.0 else "660-2800 N mm")
@@ -488,7 +488,7 @@ def plot_trb_torque(ds, out):
     """TRB 32208 torque against Fa: this model, SKF 2004, Aihara 1987, the thesis, the issue's band."""
     fig = Figure(figsize=(11, 4.6), layout="constrained")
     ax, bx = fig.subplots(1, 2)
-    Fa = ds.Fa.values / 1e3
+    Fa = ds.Fa_sweep.values / 1e3
     n = ds.torque_exponent
     ax.plot(Fa, ds.torque_trb_32208, "o-", color="C0", lw=2,
             label=f"this model (n = {float(n.sel(model='this model')):.2f})")
@@ -592,7 +592,7 @@ def plot_traction(ds, out):
     fig = Figure(figsize=(11, 4.4), layout="constrained")
     axes = fig.subplots(1, 2)
     styles = {"traction_eyring": "-", "traction_per_speed": "--"}
-    s = ds.srr.values
+    s = ds.srr_disc.values
     for ax, xscale in zip(axes, ("linear", "log")):
         m = s > 0 if xscale == "log" else np.ones_like(s, dtype=bool)
         for law in ds.law.values:
@@ -671,8 +671,8 @@ def write_report(ds, out, figures):
     head = ["Fa [kN]", "this model", *[f"ours: {c}" for c in comps], "SKF 2004", "Aihara rolling",
             "Aihara rib, Lr=0", "Aihara rib, Lr=1", "thesis", "band"]
     rows = []
-    for F in ds.Fa.values:
-        r = ds.sel(Fa=F)
+    for F in ds.Fa_sweep.values:
+        r = ds.sel(Fa_sweep=F)
         th = ds.torque_thesis.sel(Fa_thesis=F) if F in ds.Fa_thesis.values else np.nan
         band = (f"{float(ds.band_low.sel(Fa_thesis=F)):.0f}-{float(ds.band_high.sel(Fa_thesis=F)):.0f}"
                 if F in ds.Fa_thesis.values else "")
@@ -750,11 +750,11 @@ def write_report(ds, out, figures):
           "(none could be found in readable form; its header lists the figures to digitise), so only the model "
           "curves are plotted and the curve is not validated against a measurement here.\n")
     a(f"![traction curve]({figures['traction']})\n")
-    idx = [int(np.argmin(np.abs(ds.srr.values - S))) for S in TABLE_SRR]
+    idx = [int(np.argmin(np.abs(ds.srr_disc.values - S))) for S in TABLE_SRR]
     rows = [[str(law), f"{u:g}", _f(ds.film_thickness_twin_disc.sel(u=u), "{:.3f}"),
-             *[_f(ds.traction_coefficient.sel(law=law, u=u).isel(srr=i), "{:.4f}") for i in idx]]
+             *[_f(ds.traction_coefficient.sel(law=law, u=u).isel(srr_disc=i), "{:.4f}") for i in idx]]
             for law in ds.law.values for u in ds.u.values]
-    a(_table(["law", "u [m/s]", "h [um]", *[f"mu at S = {ds.srr.values[i]:.3g}" for i in idx]], rows) + "\n")
+    a(_table(["law", "u [m/s]", "h [um]", *[f"mu at S = {ds.srr_disc.values[i]:.3g}" for i in idx]], rows) + "\n")
 
     a("## e. Sensitivity to the assumed parameters\n")
     a("Each ASSUMED parameter of the friction model at the low and the high end of the range its config comment cites, "

@@ -63,13 +63,13 @@ def test_pass_fail_table_agrees_with_the_numbers(report):
     ratio = float(ds.torque_prototype_rig.sel(Fa_rig=4500.0) / ds.torque_trb_rig.sel(Fa_rig=4500.0))
     assert values["prototype / TRB 32208 at Fa 4.5 kN (Fig. 6.8)"] == pytest.approx(ratio, rel=1e-12)
     # the exponent of the two quick loads is the log-log slope between them
-    M = ds.torque_trb_32208.sel(Fa=[4500.0, 40000.0]).values
+    M = ds.torque_trb_32208.sel(Fa_sweep=[4500.0, 40000.0]).values
     assert values["TRB 32208 exponent n, 4.5-40 kN"] == pytest.approx(math.log(M[1] / M[0]) / math.log(40 / 4.5),
                                                                       rel=1e-9)
     # the 4.5 kN band: 0.6 x thesis to 1.2 x SKF 2004 (issue 14 item 5)
     k = list(ds.target.values).index("TRB 32208 torque at 4.5 kN")
     assert float(ds.target_low[k]) == pytest.approx(0.6 * 650.0)
-    assert float(ds.target_high[k]) == pytest.approx(1.2 * float(ds.torque_skf.sel(Fa=4500.0)))
+    assert float(ds.target_high[k]) == pytest.approx(1.2 * float(ds.torque_skf.sel(Fa_sweep=4500.0)))
     assert values["pinion TSRB (Table 7.4) / TRB 31313"] == pytest.approx(
         float(ds.torque_case[3] / ds.torque_case[2]), rel=1e-12)
     # the markdown table says what the dataset says, row by row
@@ -87,8 +87,8 @@ def test_breakdown_sums_to_the_torque(report):
 def test_traction_curve_is_zero_without_slip_and_rises_with_it(report):
     _, ds, _ = report
     mu = ds.traction_coefficient
-    assert np.all(mu.sel(srr=0.0) == 0.0)
-    assert np.all(mu.diff("srr") > 0.0)
+    assert np.all(mu.sel(srr_disc=0.0) == 0.0)
+    assert np.all(mu.diff("srr_disc") > 0.0)
     assert np.all(mu < 0.2)   # bounded by tau_L/p of a mineral oil (c = 0.06 plus tau_L0/p), far below 0.2
 
 
@@ -102,9 +102,9 @@ def test_sensitivity_base_row_is_the_reported_model_and_the_rib_height_acts_on_t
     outs = list(ds.sensitivity_output.values)
     for prm in ds.parameter.values:
         assert float(base.sel(parameter=prm).isel(sensitivity_output=0)) == pytest.approx(
-            float(ds.torque_trb_32208.sel(Fa=4500.0)), rel=1e-9)
+            float(ds.torque_trb_32208.sel(Fa_sweep=4500.0)), rel=1e-9)
         assert float(base.sel(parameter=prm).isel(sensitivity_output=1)) == pytest.approx(
-            float(ds.torque_trb_32208.sel(Fa=40000.0)), rel=1e-9)
+            float(ds.torque_trb_32208.sel(Fa_sweep=40000.0)), rel=1e-9)
     rib = ds.sensitivity.sel(parameter="bearing.rib_contact_height_ratio")
     low, high = rib.sel(setting="low"), rib.sel(setting="high")
     assert float(high.isel(sensitivity_output=1)) > float(low.isel(sensitivity_output=1))
