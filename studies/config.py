@@ -21,6 +21,7 @@ DESIGN_PARAMETERS = ("PCR", "kappa", "aP", "aPk", "alpha")
 DESIGN_METHODS = ("sobol", "lhs")
 MATERN_NU = (0.5, 1.5, 2.5, math.inf)
 LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
+PARETO_OBJECTIVES = ("power_loss", "L10", "pmax")   # objectives of studies.pareto
 DEFAULT_STUDY = "pinion"
 OUTPUT_ROOT = Path("outputs") / "studies"
 
@@ -229,6 +230,13 @@ def validate(study):
              sur.get("interval"), "a probability in (0, 1)")
     _require(isinstance(sur.get("log_outputs"), list), "surrogate.log_outputs", sur.get("log_outputs"),
              "a list of result names modelled as ln(y)")
+    pa = s.get("pareto", {})
+    _require(_is_int(pa.get("trials"), 1), "pareto.trials", pa.get("trials"), "an integer >= 1")
+    _require(_is_int(pa.get("levels"), 0), "pareto.levels", pa.get("levels"), "an integer >= 0")
+    fronts = pa.get("fronts")
+    _require(isinstance(fronts, list) and len(fronts) > 0 and all(
+        isinstance(f, list) and len(f) == 2 and f[0] != f[1] and set(f) <= set(PARETO_OBJECTIVES) for f in fronts),
+        "pareto.fronts", fronts, f"a non-empty list of pairs of distinct names from {list(PARETO_OBJECTIVES)}")
     load = s.get("load", {})
     for key in LOAD_KEYS:
         _require(_is_number(load.get(key)), f"load.{key}", load.get(key), "a finite number (checked by the simulation)")

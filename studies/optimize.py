@@ -28,7 +28,7 @@ from studies.report import write_report
 STUDY_ERRORS = PROJECT_ERRORS + (StudyConfigError,)
 
 
-def _new_folders(path):
+def new_folders(path):
     """``path`` and those of its parents that do not exist yet, deepest first."""
     path = Path(path).absolute()
     new = []
@@ -38,7 +38,7 @@ def _new_folders(path):
     return new
 
 
-def _remove_if_empty(folders):
+def remove_if_empty(folders):
     """Remove the folders (deepest first) that hold nothing, i.e. that a refused study made."""
     for folder in folders:
         try:
@@ -69,7 +69,7 @@ def main(argv=None):
         cfg = compose(args.overrides)   # every input checked: nothing is written before this passes
     except STUDY_ERRORS as err:
         return refused(err)
-    new = _new_folders(output_dir(cfg.study))
+    new = new_folders(output_dir(cfg.study))
     try:
         search = DesignSearch(cfg, args.overrides, log=lambda msg: print(f"[{time.perf_counter() - t0:6.1f} s] {msg}",
                                                                         flush=True))
@@ -79,7 +79,7 @@ def main(argv=None):
             raise StudyConfigError(_reference_failure(search, cfg.study) or str(err)) from err
         ds, reason = search.run()
     except STUDY_ERRORS as err:
-        _remove_if_empty(new)
+        remove_if_empty(new)
         return refused(err)
     print(write_report(search, ds, reason))
     print(f"\nwritten to {search.out}/ in {time.perf_counter() - t0:.1f} s")

@@ -18,6 +18,7 @@ redone, identically, since the sampler seeds depend only on the trial count.
 """
 from pathlib import Path
 
+import numpy as np
 import optuna
 from optuna.storages import JournalStorage, RDBStorage, RetryHeartbeatStaleTrialCallback
 from optuna.storages.journal import JournalFileBackend
@@ -83,9 +84,13 @@ def make_storage(spec, heartbeat=None):
                       heartbeat_stale_trial_callback=RetryHeartbeatStaleTrialCallback(max_retry=int(heartbeat["max_retry"])))
 
 
-def open_study(storage, name, sampler):
-    """Create or load (``load_if_exists``) a minimisation study."""
-    return optuna.create_study(storage=storage, study_name=name, sampler=sampler, direction="minimize",
+def open_study(storage, name, sampler, directions=None):
+    """Create or load (``load_if_exists``) a study: one objective minimised, or ``directions``
+    (a list of "minimize"/"maximize", multi-objective)."""
+    if directions is None:
+        return optuna.create_study(storage=storage, study_name=name, sampler=sampler, direction="minimize",
+                                   load_if_exists=True)
+    return optuna.create_study(storage=storage, study_name=name, sampler=sampler, directions=list(directions),
                                load_if_exists=True)
 
 
@@ -123,7 +128,7 @@ def run_trials(study, n_trials, evaluate, sampler_for):
     n_trials : int
     evaluate : callable
         ``evaluate(trial) -> (value, margins, user_attrs)``: it suggests the parameters, and
-        returns the objective, the constraint margins (<= 0 feasible) and extra attributes.
+        returns the objective (a list of values for a multi-objective study), the constraint margins (<= 0 feasible) and extra attributes.
         A design that cannot be evaluated is a result (positive margin), not an exception.
     sampler_for : callable
         ``sampler_for(k)`` -> sampler used to ask for the trial after k complete ones.
@@ -148,6 +153,6 @@ def run_trials(study, n_trials, evaluate, sampler_for):
             trial.set_user_attr(key, val)
         for i, m in enumerate(margins):
             trial.set_constraint(str(i), float(m))
-        study.tell(trial, float(value))
+        study.tell(trial, [float(v) for v in value] if np.ndim(value) else float(value))
         done += 1
     return complete_trials(study)

@@ -134,6 +134,18 @@ def test_workers_refuse_in_one_line_and_make_no_folder(tmp_path, args, fragments
     assert not (tmp_path / "outputs").exists()
 
 
+# ---------------------------------------------------------------------------- python -m studies.pareto
+@pytest.mark.parametrize("overrides, fragments", [
+    (["study.pareto.fronts=[[power_loss,torque]]"], ["study.pareto.fronts", "torque"]),
+    (["study.pareto.trials=0"], ["study.pareto.trials = 0", ">= 1"]),
+    (["study.load.Fa=-5"], ["study.load.Fa = -5.0 is outside the allowed range"]),
+], ids=["unknown_objective", "no_trials", "Fa_negative"])
+def test_pareto_refuses_in_one_line_and_makes_no_folder(tmp_path, overrides, fragments):
+    out = run(["-m", "studies.pareto", *overrides], tmp_path)
+    assert_refused(out, *fragments)
+    assert not (tmp_path / "outputs").exists()
+
+
 # ---------------------------------------------------------------------------- python -m studies.validation
 def test_validation_refuses_an_output_path_that_is_a_file(tmp_path):
     target = tmp_path / "report"
@@ -159,5 +171,5 @@ def test_every_entry_point_is_covered():
     """The entry points of the issue, each with its refusal tests above (benchmarks are exempt)."""
     mains = {p.relative_to(REPO).as_posix() for p in list((REPO / "sim").rglob("*.py"))
              + list((REPO / "studies").rglob("*.py")) if 'if __name__ == "__main__":' in p.read_text()}
-    assert mains == {"sim/run.py", "sim/api/sweep.py", "studies/optimize.py", "studies/sensitivity.py",
-                     "studies/validation.py", "studies/workers.py"}
+    assert mains == {"sim/run.py", "sim/api/sweep.py", "studies/optimize.py", "studies/pareto.py",
+                     "studies/sensitivity.py", "studies/validation.py", "studies/workers.py"}
