@@ -46,6 +46,7 @@ import numpy as np
 import scipy
 import sklearn
 
+from surrogate.classifier import SuccessClassifier
 from surrogate.gp import GPSurrogate
 
 try:
@@ -182,13 +183,13 @@ def _verified_model_bytes(path, on_version_mismatch, expected=None, check_versio
 
 
 def _unpickle(data, path, on_version_mismatch):
-    """The GPSurrogate in verified bytes ``data`` (of ``<path>.joblib``)."""
+    """The GPSurrogate or SuccessClassifier in verified bytes ``data`` (of ``<path>.joblib``)."""
     with warnings.catch_warnings():
         if on_version_mismatch == "warn":  # already warned, with the versions and how to refit
             warnings.simplefilter("ignore", InconsistentVersionWarning)
         model = joblib.load(io.BytesIO(data))
-    if not isinstance(model, GPSurrogate):
-        raise SurrogateLoadError(f"{path}.joblib does not hold a GPSurrogate")
+    if not isinstance(model, (GPSurrogate, SuccessClassifier)):
+        raise SurrogateLoadError(f"{path}.joblib does not hold a GPSurrogate or SuccessClassifier")
     return model
 
 

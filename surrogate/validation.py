@@ -14,8 +14,10 @@ class CrossValidation:
     Attributes
     ----------
     y, mean, lower, upper : ndarray
-        Observed value, predicted mean and central interval of each point, predicted by the
-        model fitted without that point's fold.
+        Observed value, point prediction and central interval of each point, predicted by the
+        model fitted without that point's fold. The point prediction is the posterior mean of
+        the modelled z, i.e. the median exp(mu) for a log output (as a search ranks designs,
+        surrogate.gp), not the log-normal mean.
     level : float
         Probability of the interval [1].
     r2 : float
@@ -63,7 +65,8 @@ def cross_validate(X, y, bounds, log, settings, n_splits, level, name="y", units
     mean, lower, upper = (np.empty_like(y) for _ in range(3))
     for train, test in KFold(n_splits, shuffle=True, random_state=settings.seed).split(X):
         model = GPSurrogate(bounds, log, settings, name, units).fit(X[train], y[train])
-        mean[test] = model.predict(X[test])[0]
+        mu = model.predict_latent(X[test])[0]
+        mean[test] = np.exp(mu) if log else mu
         lower[test], upper[test] = model.interval(X[test], level)
     ss_res = float(np.sum((y - mean) ** 2))
     ss_tot = float(np.sum((y - y.mean()) ** 2))

@@ -21,7 +21,7 @@ from studies.report import ratio_in_words, write_report
 from studies.search import make_sampler, open_study, run_trials, trial_margins
 
 TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
-        "study.budget.max_simulations=12", "study.budget.trials_per_round=25", "study.budget.verify_per_round=2",
+        "study.budget.max_simulations=12", "study.budget.verify_per_round=2",
         "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0", "study.sampler_settings.n_startup_trials=10",
         "study.refine.max_simulations=0"]
 
