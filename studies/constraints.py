@@ -73,9 +73,9 @@ class Limits:
                    float(study.load.Fr))
 
     def C_eff_min(self, ratings_alpha):
-        """C_eff [N] at which L10 = L10_min for a design rated at ``ratings_alpha`` [deg]:
-        P L10_min^(1/p), P of eq. (2.12) (the L10 margin is <= 0 exactly for C_eff >= this)."""
-        P = float(ratings.equivalent_dynamic_load(self.Fr, self.Fa, ratings_alpha))
+        """C_eff [N] at which L10 = L10_min for designs rated at ``ratings_alpha`` [deg] (float or
+        array): P L10_min^(1/p), P of eq. (2.12) (the L10 margin is <= 0 exactly for C_eff >= this)."""
+        P = np.asarray(ratings.equivalent_dynamic_load(self.Fr, self.Fa, ratings_alpha), dtype=float)
         return P * self.L10_min ** (1.0 / LIFE_EXPONENT)
 
     @property

@@ -282,14 +282,10 @@ class DesignSearch:
         L = self.limits
         out = [Constraint("axial_displacement", -L.axial_displacement_max, L.axial_displacement_max),
                Constraint("pmax", high=L.pmax_max),
-               Constraint("C_eff", low=self._C_eff_min)]
+               Constraint("C_eff", low=lambda X: L.C_eff_min(self.space.ratings_alpha(X)))]
         if L.edge_stress:
             out.append(Constraint(EDGE_MARGIN, high=0.0))
         return out
-
-    def _C_eff_min(self, X):
-        """C_eff needed for L10_min at each design X (its rating angle sets P) [N]."""
-        return np.array([self.limits.C_eff_min(self.space.bearing_values(x)["ratings_alpha"]) for x in X])
 
     def admissible(self, x):
         """Whether design x can be built and meets the exact constraints (no simulation needed)."""
