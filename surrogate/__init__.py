@@ -14,8 +14,8 @@ from surrogate.classifier import SuccessClassifier
 from surrogate.gp import GPSettings, GPSurrogate
 from surrogate.store import (SurrogateIntegrityError, SurrogateLoadError, SurrogateVersionError,
                              SurrogateVersionWarning, load_surrogates, save_surrogates, saved_set)
-from surrogate.validation import CrossValidation, cross_validate
+from surrogate.validation import CrossValidation, cross_validate, cross_validate_outputs
 
 __all__ = ["CandidateSettings", "Constraint", "propose", "SuccessClassifier", "GPSettings", "GPSurrogate",
            "save_surrogates", "load_surrogates", "saved_set", "SurrogateLoadError", "SurrogateIntegrityError", "SurrogateVersionError", "SurrogateVersionWarning", "CrossValidation",
-           "cross_validate"]
+           "cross_validate", "cross_validate_outputs"]
