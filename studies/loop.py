@@ -297,8 +297,8 @@ class DesignSearch:
         ``ds`` (surrogate.acquisition), each at least ``budget.dedup_distance`` (max-norm, unit
         cube) from every simulated and every ``pending`` design (being simulated elsewhere, fantasised
         by the kriging believer)."""
-        i, key = self.best(ds.isel(design=np.flatnonzero(ds.status.values == STATUS["ok"])))
         ok = ds.isel(design=np.flatnonzero(ds.status.values == STATUS["ok"]))
+        i, key = self.best(ok)
         incumbent = centre = None
         if i is not None:
             centre = design_matrix(ok, self.space)[i]

@@ -3,8 +3,8 @@
 A set of surrogates (:func:`save_surrogates`) is one folder::
 
     <folder>/manifest.json     what the folder holds, written last (below)
-    <folder>/<name>.joblib     the fitted GPSurrogate, pickled by joblib
-    <folder>/<name>.json       its metadata (GPSurrogate.metadata) and the model file's SHA-256
+    <folder>/<name>.joblib     the fitted GPSurrogate or SuccessClassifier, pickled by joblib
+    <folder>/<name>.json       its metadata (the model's ``metadata()``) and the model file's SHA-256
 
     manifest.json = {"format": "surrogate set", "version": 1, "created": ISO 8601 UTC,
                      "versions": {"sklearn", "numpy", "scipy", "joblib", "python"},
@@ -239,7 +239,7 @@ def saved_set(folder):
 
 
 def save_surrogates(models, folder):
-    """Save a dict name -> GPSurrogate as the set ``folder`` (module docstring), replacing any old set.
+    """Save a dict name -> GPSurrogate or SuccessClassifier as the set ``folder`` (module docstring), replacing any old set.
 
     The new set is written completely into a hidden sibling folder first, then swapped in with
     two atomic renames; a crash at any point leaves a complete set (the old or the new one) that
@@ -275,7 +275,7 @@ def save_surrogates(models, folder):
 
 
 def load_surrogates(folder, on_version_mismatch="error"):
-    """Load the set saved as ``folder``: dict name -> GPSurrogate.
+    """Load the set saved as ``folder``: dict name -> GPSurrogate or SuccessClassifier.
 
     Reads the manifest (of ``folder``, or of ``<folder>.old`` after a save interrupted between
     its renames), checks the scikit-learn version it records, and loads exactly the models it
