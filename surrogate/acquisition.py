@@ -46,6 +46,7 @@ from scipy.stats import qmc
 _C1 = 0.5 * np.log(2.0 * np.pi)
 _C2 = 0.5 * np.log(0.5 * np.pi)
 _ASYMPTOTIC = -1.0 / np.sqrt(np.finfo(float).eps)   # below: log h(u) = log phi(u) - 2 ln|u| (Ament et al. 2023)
+_SD_MIN = 1e-300   # a posterior standard deviation of 0 (a GP without noise at its own data) is taken as this
 
 
 def _log1mexp(x):
@@ -59,32 +60,34 @@ def log_h(u):
     """log(u Phi(u) + phi(u)), the standardised expected improvement, for any real u (Ament et al. 2023, 4.1)."""
     u = np.asarray(u, dtype=float)
     out = np.empty_like(u)
-    big = u > -1.0
-    ub = u[big]
-    out[big] = np.log(ub * np.exp(log_ndtr(ub)) + np.exp(-0.5 * ub**2 - _C1))
-    mid = (~big) & (u > _ASYMPTOTIC)
-    um = u[mid]
-    out[mid] = -0.5 * um**2 - _C1 + _log1mexp(np.log(erfcx(-um / np.sqrt(2.0)) * np.abs(um)) + _C2)
-    tail = ~(big | mid)
-    out[tail] = -0.5 * u[tail] ** 2 - _C1 - 2.0 * np.log(np.abs(u[tail]))
+    with np.errstate(over="ignore"):                          # |u| beyond 1e154: u^2 = inf, the limits are exact
+        big = u > -1.0
+        ub = u[big]
+        out[big] = np.log(ub * np.exp(log_ndtr(ub)) + np.exp(-0.5 * ub**2 - _C1))
+        mid = (~big) & (u > _ASYMPTOTIC)
+        um = u[mid]
+        out[mid] = -0.5 * um**2 - _C1 + _log1mexp(np.log(erfcx(-um / np.sqrt(2.0)) * np.abs(um)) + _C2)
+        tail = ~(big | mid)
+        out[tail] = -0.5 * u[tail] ** 2 - _C1 - 2.0 * np.log(np.abs(u[tail]))
     return out
 
 
 def log_expected_improvement(mu, sd, best):
     """log E[max(best - Z, 0)] for Z ~ N(mu, sd^2) (minimisation): log sd + log h((best - mu) / sd)."""
-    mu, sd = np.asarray(mu, dtype=float), np.asarray(sd, dtype=float)
+    mu, sd = np.asarray(mu, dtype=float), np.maximum(np.asarray(sd, dtype=float), _SD_MIN)
     return np.log(sd) + log_h((best - mu) / sd)
 
 
 def log_probability_between(mu, sd, low, high):
     """log P(low <= Z <= high) for Z ~ N(mu, sd^2); low, high may be -inf, inf (broadcast)."""
-    mu, sd = np.asarray(mu, dtype=float), np.asarray(sd, dtype=float)
+    mu, sd = np.asarray(mu, dtype=float), np.maximum(np.asarray(sd, dtype=float), _SD_MIN)
     a, b = np.broadcast_arrays((low - mu) / sd, (high - mu) / sd)
     flip = a > 0.0                        # both limits in the upper tail: use P = Phi(-a) - Phi(-b)
     a, b = np.where(flip, -b, a), np.where(flip, -a, b)
     lb, la = log_ndtr(b), log_ndtr(a)
     with np.errstate(invalid="ignore"):
-        return lb + _log1mexp(np.minimum(la - lb, 0.0))
+        out = lb + _log1mexp(np.minimum(la - lb, 0.0))
+    return np.where(lb == -np.inf, -np.inf, out)             # both limits far below: P = 0
 
 
 @dataclass(frozen=True)

@@ -166,3 +166,11 @@ def test_classifier_with_one_class_is_the_rule_of_succession():
     np.testing.assert_array_equal(clf.probability(X[:3]), np.full(3, 9.0 / 10.0))
     with pytest.raises(ValueError, match="one label per row"):
         SuccessClassifier(BOX, SETTINGS).fit(X, np.ones(7, dtype=bool))
+
+
+def test_a_zero_standard_deviation_gives_finite_or_minus_infinite_logs_not_nan():
+    """sd = 0 (a GP exactly at its data): EI is max(best - mu, 0), the probability 0 or 1."""
+    assert log_expected_improvement(0.0, 0.0, 1.0) == pytest.approx(0.0, abs=1e-12)          # log(1 - 0)
+    assert log_expected_improvement(2.0, 0.0, 1.0) == -np.inf                                 # no improvement possible
+    assert log_probability_between(0.0, 0.0, -1.0, 1.0) == pytest.approx(0.0, abs=1e-12)
+    assert log_probability_between(2.0, 0.0, -1.0, 1.0) == -np.inf
