@@ -17,5 +17,6 @@ from surrogate.store import (SurrogateIntegrityError, SurrogateLoadError, Surrog
 from surrogate.validation import CrossValidation, cross_validate, cross_validate_outputs
 
 __all__ = ["CandidateSettings", "Constraint", "propose", "SuccessClassifier", "GPSettings", "GPSurrogate",
-           "save_surrogates", "load_surrogates", "saved_set", "SurrogateLoadError", "SurrogateIntegrityError", "SurrogateVersionError", "SurrogateVersionWarning", "CrossValidation",
-           "cross_validate", "cross_validate_outputs"]
+           "save_surrogates", "load_surrogates", "saved_set", "SurrogateLoadError", "SurrogateIntegrityError",
+           "SurrogateVersionError", "SurrogateVersionWarning", "CrossValidation", "cross_validate",
+           "cross_validate_outputs"]

@@ -104,8 +104,8 @@ class Constraint:
 
     def limits(self, X):
         """(low, high) at the designs X, each (n,) [output unit]."""
-        n = len(X)
-        return tuple(np.broadcast_to(np.asarray(v(X) if callable(v) else v, dtype=float), (n,)) for v in (self.low, self.high))
+        return tuple(np.broadcast_to(np.asarray(v(X) if callable(v) else v, dtype=float), (len(X),))
+                     for v in (self.low, self.high))
 
 
 def _latent_limits(model, low, high):

@@ -32,10 +32,10 @@ training data (136 points) the 5-fold coverage of pmax and C_eff calibrated that
 0.90 and 0.88; with refitted folds 0.96 and 0.93 (three fold seeds each). The factor uses the
 training data only, so k-fold cross-validation of the calibrated model (surrogate.validation)
 measures its coverage on points it has not seen. The factor only widens (c >= 1): it is
-estimated from the few residuals in the tail (5 % of n at level 0.95), and narrowing on such an estimate risks the overconfidence
-the calibration is there to remove (a smooth noise-free test function, 64 points: intervals that
-covered 1.0 narrowed by c = 0.71 covered 0.875 in cross-validation), while intervals that are
-too wide only cost a search some exploration.
+estimated from the few residuals in the tail (5 % of n at level 0.95), and narrowing on such an
+estimate risks the overconfidence the calibration is there to remove (a smooth noise-free test
+function, 64 points: intervals that covered 1.0, narrowed by c = 0.71, covered 0.875 in
+cross-validation), while intervals that are too wide only cost a search some exploration.
 """
 import copy
 import warnings
