@@ -34,7 +34,7 @@ from optuna.trial import TrialState  # noqa: E402
 from studies.config import compose  # noqa: E402
 from studies.workers import Workers, study_name  # noqa: E402
 
-DEFAULT = ["study.initial_design.n=16", "study.budget.max_simulations=48", "study.budget.trials_per_round=100",
+DEFAULT = ["study.initial_design.n=16", "study.budget.max_simulations=48",
            "study.n_jobs=1"]
 
 

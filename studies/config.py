@@ -193,12 +193,19 @@ def validate(study):
     b = s.get("budget", {})
     _require(_is_int(b.get("max_simulations"), d["n"]), "budget.max_simulations", b.get("max_simulations"),
              f"an integer >= initial_design.n = {d['n']}")
-    for key in ("trials_per_round", "verify_per_round", "patience"):
+    for key in ("verify_per_round", "patience"):
         _require(_is_int(b.get(key), 1), f"budget.{key}", b.get(key), "an integer >= 1")
     _require(_is_number(b.get("min_improvement")) and b["min_improvement"] >= 0.0, "budget.min_improvement",
              b.get("min_improvement"), "a number >= 0")
     _require(_is_number(b.get("dedup_distance")) and 0.0 <= b["dedup_distance"] < 1.0, "budget.dedup_distance",
              b.get("dedup_distance"), "a number in [0, 1)")
+    a = s.get("acquisition", {})
+    _require(_is_int(a.get("n_global"), 1), "acquisition.n_global", a.get("n_global"), "an integer >= 1")
+    _require(_is_int(a.get("n_local"), 0), "acquisition.n_local", a.get("n_local"), "an integer >= 0")
+    scales = a.get("local_scales")
+    _require(isinstance(scales, list) and len(scales) > 0 and all(_is_number(v) and 0.0 < v <= 1.0 for v in scales),
+             "acquisition.local_scales", scales, "a non-empty list of numbers in (0, 1] (unit-cube coordinates)")
+    _require(_is_int(a.get("n_centres"), 1), "acquisition.n_centres", a.get("n_centres"), "an integer >= 1")
     rf = s.get("refine", {})
     _require(_is_int(rf.get("max_simulations"), 0), "refine.max_simulations", rf.get("max_simulations"),
              "an integer >= 0 (0: no local stage)")
@@ -226,6 +233,7 @@ def validate(study):
                  f"surrogate.{key}", v, "[low, high] with 0 < low < high")
     _require(_is_int(sur.get("n_restarts_optimizer"), 0), "surrogate.n_restarts_optimizer",
              sur.get("n_restarts_optimizer"), "an integer >= 0")
+    _require(isinstance(sur.get("calibrate"), bool), "surrogate.calibrate", sur.get("calibrate"), "true or false")
     _require(_is_number(sur.get("interval")) and 0.0 < sur["interval"] < 1.0, "surrogate.interval",
              sur.get("interval"), "a probability in (0, 1)")
     _require(isinstance(sur.get("log_outputs"), list), "surrogate.log_outputs", sur.get("log_outputs"),

@@ -26,6 +26,7 @@ from studies.config import StudyConfigError
 from studies.evaluate import EDGE_MARGIN
 
 FAILED = 1.0  # margin of a point without results: one limit's worth of violation, so a sampler ranks it
+LIFE_EXPONENT = 10.0 / 3.0  # p of L10 = (C / P)^p for roller bearings, ISO 281 / thesis eq. (2.15)
 
 
 @dataclass(frozen=True)
@@ -71,6 +72,12 @@ class Limits:
                    bool(c.edge_stress), float(c.PCR_over_Lwe_max), float(Lwe), float(study.load.Fa),
                    float(study.load.Fr))
 
+    def C_eff_min(self, ratings_alpha):
+        """C_eff [N] at which L10 = L10_min for designs rated at ``ratings_alpha`` [deg] (float or
+        array): P L10_min^(1/p), P of eq. (2.12) (the L10 margin is <= 0 exactly for C_eff >= this)."""
+        P = np.asarray(ratings.equivalent_dynamic_load(self.Fr, self.Fa, ratings_alpha), dtype=float)
+        return P * self.L10_min ** (1.0 / LIFE_EXPONENT)
+
     @property
     def names(self):
         """Names of the margins returned by :func:`margins`, in order."""
@@ -98,18 +105,23 @@ def margins(values, bearing, limits, simulation):
         One margin per name of ``limits.names``. Without results (any NaN) the result-based
         margins are 0: the ``simulation`` margin alone marks the point infeasible.
     """
-    geometric = bearing["PCR"] / (limits.PCR_over_Lwe_max * limits.Lwe) - 1.0
+    geometric = exact_margin(bearing, limits)
     needed = [values[k] for k in ("pmax", "axial_displacement", "C_eff", *((EDGE_MARGIN,) if limits.edge_stress else ()))]
     if not np.all(np.isfinite(needed)):
         return np.array([simulation, *([0.0] * (len(limits.names) - 2)), geometric])
     P = float(ratings.equivalent_dynamic_load(limits.Fr, limits.Fa, bearing["ratings_alpha"]))
-    L10 = float(ratings.basic_rating_life(values["C_eff"], P)) if values["C_eff"] > 0.0 else 0.0
+    L10 = float(ratings.basic_rating_life(values["C_eff"], P, LIFE_EXPONENT)) if values["C_eff"] > 0.0 else 0.0
     out = [simulation, abs(values["axial_displacement"]) / limits.axial_displacement_max - 1.0,
            values["pmax"] / limits.pmax_max - 1.0, 1.0 - L10 / limits.L10_min]
     if limits.edge_stress:
         out.append(values[EDGE_MARGIN])
     out.append(geometric)
     return np.array(out, dtype=float)
+
+
+def exact_margin(bearing, limits):
+    """The PCR_over_Lwe margin, known without a simulation: PCR / (ratio_max Lwe) - 1."""
+    return bearing["PCR"] / (limits.PCR_over_Lwe_max * limits.Lwe) - 1.0
 
 
 def violation(m):

@@ -1,41 +1,46 @@
-"""Surrogate-assisted design search with verification by the full simulation (issue 5, items 1-4).
+"""Surrogate-assisted design search with verification by the full simulation (issues 5 and 16).
 
 1. Space-filling design (Sobol / Latin hypercube) of full simulations -> ``training.nc``.
-2. Round r: GP surrogates fitted to every simulation so far (``surrogates/round_rrr/``); an
-   Optuna study ``<name>-round-rrr`` minimises the surrogate objective under the surrogate
-   constraints; its best k distinct candidates are re-run with the full simulation and added
-   to ``training.nc``.
+2. Round r: GP surrogates fitted to every simulation so far (``surrogates/round_rrr/``): one
+   regression GP per modelled output (objective and constrained quantities, calibrated
+   intervals, surrogate.gp) and a GP classifier of the simulations that gave a result
+   (surrogate.classifier). Constrained Bayesian optimisation (surrogate.acquisition) picks
+   ``budget.verify_per_round`` = q designs: log expected improvement times the probability of
+   every constraint times the probability of success, maximised over a dense candidate set
+   (``study.acquisition``), a kriging-believer batch of distinct designs. They are run with the
+   full simulation and added to ``training.nc``.
 3. Stop when the verified best has not improved for ``budget.patience`` rounds, when the
    simulation budget is spent, or when no new candidate is left.
 4. Final local stage on the full simulation from the verified best (:mod:`studies.refine`,
    ``study.refine``): COBYLA under every constraint, its points stored as source ``refinement``
    (round -1) and outside the loop's budget and rounds.
 
-Everything lives under the study's folder and in its Optuna storage, so running the same
-command again resumes where it stopped; changed result-defining settings are refused.
+Everything lives under the study's folder, so running the same command again resumes where it
+stopped: a round's surrogates are loaded from their folder and its proposal is deterministic
+(seeded by the study seed and the round), so a round killed while simulating proposes the same
+designs again; changed result-defining settings are refused.
 """
 import time
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import optuna
 import xarray as xr
 from omegaconf import OmegaConf
 
 from sim.api import Geometry, GeometryError
 from sim.io import write_netcdf_atomic
-from studies.config import StudyConfigError, output_dir, simulation_config, storage_spec
-from studies.constraints import FAILED, Limits, margins, rank_key
+from studies.config import StudyConfigError, output_dir, simulation_config
+from studies.constraints import FAILED, Limits, exact_margin, margins, rank_key
 from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, STATUS_NAMES, design_matrix, evaluate_design, evaluate_designs,
                               points_dataset, simulate_point, table_from_file, table_to_file)
 from studies.refine import SOURCE as REFINEMENT, local_refine
-from studies.search import (complete_trials, finished_study, make_sampler, make_storage, open_study, persist_study,
-                            run_trials, trial_margins)
+from studies.search import complete_trials
 from studies.space import DesignSpace
-from surrogate import GPSettings, GPSurrogate, load_surrogates, save_surrogates, saved_set
+from surrogate import (CandidateSettings, Constraint, GPSettings, GPSurrogate, SuccessClassifier, load_surrogates,
+                       propose, save_surrogates, saved_set)
 
-CONVERGED = "converged"  # surrogate of the convergence label: +1 converged, -1 not (Rasmussen & Williams 6.5)
+SUCCESS = "success"      # the classifier of simulations that gave a result, in a round's surrogate set
 # study keys that do not change results: a study may be resumed with other values
 RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name", "workers", "refine")
 REFINEMENT_ROUND = -1    # ``round`` of the final local stage's points
@@ -95,7 +100,6 @@ class DesignSearch:
         self.objective = str(s.objective)
         self.quantities = tuple(dict.fromkeys((self.objective, *RECORDED)))
         self.settings = GPSettings.from_config(s.surrogate, s.seed)
-        self.storage = make_storage(storage_spec(s, self.out))
         self.references = {}
         self.limits = None
         # plain copies for the geometry check of every surrogate trial (an OmegaConf copy costs 16 ms)
@@ -226,23 +230,29 @@ class DesignSearch:
         return tuple(dict.fromkeys(names))
 
     def training_sets(self, ds):
-        """(X, y, log, units) per modelled output: results of converged points; labels of all simulated ones."""
+        """(X, y, log, units) per modelled output, from the points with results."""
         X = design_matrix(ds, self.space)
         ok = ds.status.values == STATUS["ok"]
-        ran = ds.status.values != STATUS["geometry_error"]
         log_outputs = set(self.study.surrogate.log_outputs)
-        sets = {q: (X[ok], ds[q].values[ok], q in log_outputs, ds[q].attrs.get("units", "1")) for q in self.modelled()}
-        sets[CONVERGED] = (X[ran], np.where(ok[ran], 1.0, -1.0), False, "1")
-        return sets
+        return {q: (X[ok], ds[q].values[ok], q in log_outputs, ds[q].attrs.get("units", "1")) for q in self.modelled()}
+
+    def success_set(self, ds):
+        """(X, success) of the points that were simulated: impossible geometries are known without a
+        simulation (:meth:`admissible`), so they are no failure of the simulation to learn."""
+        ran = ds.status.values != STATUS["geometry_error"]
+        return design_matrix(ds, self.space)[ran], ds.status.values[ran] == STATUS["ok"]
 
     def fit(self, ds):
-        """GP surrogates of every modelled output fitted to ``ds``."""
+        """Regression surrogates of every modelled output and the success classifier (key
+        :data:`SUCCESS`) fitted to ``ds``."""
         n_ok = int((ds.status == STATUS["ok"]).sum())
         if n_ok < 2:
             raise StudyConfigError(f"only {n_ok} of {ds.sizes['design']} simulations converged: the surrogates need "
                                    f"at least 2; check study.bounds")
-        return {q: GPSurrogate(self.space.bounds, log, self.settings, q, units).fit(X, y)
-                for q, (X, y, log, units) in self.training_sets(ds).items()}
+        models = {q: GPSurrogate(self.space.bounds, log, self.settings, q, units).fit(X, y)
+                  for q, (X, y, log, units) in self.training_sets(ds).items()}
+        models[SUCCESS] = SuccessClassifier(self.space.bounds, self.settings, SUCCESS).fit(*self.success_set(ds))
+        return models
 
     def surrogates(self, folder, ds):
         """Surrogates saved in ``folder``, or fitted to ``ds`` and saved there.
@@ -265,15 +275,42 @@ class DesignSearch:
             return str(err)
         return ""
 
-    def surrogate_trial(self, trial, models):
-        """Evaluate an Optuna trial on the surrogates: (objective, margins, user attrs)."""
-        x = self.space.suggest(trial)
+    def constraint_set(self):
+        """The constraints of :func:`studies.constraints.margins` on the modelled outputs, as limits
+        for the acquisition (the simulation margin is the classifier's, PCR_over_Lwe is exact:
+        :meth:`admissible`)."""
+        L = self.limits
+        out = [Constraint("axial_displacement", -L.axial_displacement_max, L.axial_displacement_max),
+               Constraint("pmax", high=L.pmax_max),
+               Constraint("C_eff", low=lambda X: L.C_eff_min(self.space.ratings_alpha(X)))]
+        if L.edge_stress:
+            out.append(Constraint(EDGE_MARGIN, high=0.0))
+        return out
+
+    def admissible(self, x):
+        """Whether design x can be built and meets the exact constraints (no simulation needed)."""
         bearing = self.space.bearing_values(x)
-        geometry = self.geometry_error(bearing)
-        predicted = {q: float(m.predict(x[None, :])[0][0]) for q, m in models.items()}
-        sim_margin = FAILED if geometry else -predicted[CONVERGED]
-        return predicted[self.objective], margins(predicted, bearing, self.limits, sim_margin), \
-            {"predicted": predicted, "geometry_error": geometry}
+        return exact_margin(bearing, self.limits) <= 0.0 and self.geometry_error(bearing) == ""
+
+    def propose(self, ds, models, q, seed, pending=None):
+        """q new designs (k, d), k <= q, by constrained Bayesian optimisation on ``models`` fitted to
+        ``ds`` (surrogate.acquisition), each at least ``budget.dedup_distance`` (max-norm, unit
+        cube) from every simulated and every ``pending`` design (being simulated elsewhere, fantasised
+        by the kriging believer)."""
+        ok = ds.isel(design=np.flatnonzero(ds.status.values == STATUS["ok"]))
+        i, key = self.best(ok)
+        incumbent = centre = None
+        if i is not None:
+            centre = design_matrix(ok, self.space)[i]
+            if key[0] == 0:
+                value = float(ok[self.objective].values[i])
+                incumbent = np.log(value) if models[self.objective].log else value
+        regression = {k: m for k, m in models.items() if k != SUCCESS}
+        X, _ = propose(regression, self.objective, self.constraint_set(), models[SUCCESS], incumbent, centre,
+                       self.space.bounds, design_matrix(ds, self.space), q,
+                       CandidateSettings.from_config(self.study.acquisition), self.admissible,
+                       float(self.study.budget.dedup_distance), seed, pending)
+        return X
 
     def simulation_trial(self, trial):
         """Evaluate an Optuna trial with the full simulation: (objective, margins, user attrs).
@@ -294,45 +331,6 @@ class DesignSearch:
         return value, margins(record["values"], bearing, self.limits, 0.0 if ok else FAILED), \
             {"status": record["status"], "message": record["message"], "values": record["values"],
              "wall_time": record["wall_time"]}
-
-    def run_round(self, r, models):
-        """Optuna study of round r on the surrogates: its complete trials.
-
-        Taken from the storage when a finished copy is there; else run in memory and then
-        written to the storage as ``<name>-round-rrr`` (studies.search, persist_study).
-        """
-        s = self.study
-        name = f"{s.name}-round-{r:03d}"
-        stored = finished_study(self.storage, name)
-        if stored is not None:
-            return complete_trials(stored)
-        study = open_study(optuna.storages.InMemoryStorage(), name,
-                           make_sampler(str(s.sampler), round_seed(s.seed, r, 0), s.sampler_settings))
-        trials = run_trials(study, int(s.budget.trials_per_round), lambda t: self.surrogate_trial(t, models),
-                            lambda k: make_sampler(str(s.sampler), round_seed(s.seed, r, k), s.sampler_settings))
-        persist_study(study, self.storage)
-        return trials
-
-    def candidates(self, trials, ds, k, pending=None):
-        """Best k trials (feasible by objective, then by violation) with possible geometry, each at
-        least ``dedup_distance`` (max-norm, unit cube) from every simulated, every ``pending``
-        (X of points being simulated elsewhere) and every chosen point."""
-        seen = list(self.space.unit(design_matrix(ds, self.space)))
-        if pending is not None and len(pending):
-            seen.extend(self.space.unit(pending))
-        tol = float(self.study.budget.dedup_distance)
-        chosen = []
-        for t in sorted(trials, key=lambda t: rank_key(t.value, trial_margins(t))):
-            if len(chosen) == k:
-                break
-            if t.user_attrs["geometry_error"]:
-                continue
-            x = self.space.from_params(t.params)
-            u = self.space.unit(x)[0]
-            if all(np.max(np.abs(u - v)) >= tol for v in seen):
-                chosen.append(x)
-                seen.append(u)
-        return np.array(chosen).reshape(len(chosen), len(self.space.names))
 
     # ------------------------------------------------------------------ final local stage
     def refine(self, ds):
@@ -393,10 +391,10 @@ class DesignSearch:
                 break
             t0 = time.perf_counter()
             models = self.surrogates(self.out / "surrogates" / f"round_{r:03d}", ds)
-            trials = self.run_round(r, models)
-            t_study = time.perf_counter() - t0
             if not np.any(ds["round"].values == r):
-                X = self.candidates(trials, ds, min(int(b.verify_per_round), int(b.max_simulations) - ds.sizes["design"]))
+                q = min(int(b.verify_per_round), int(b.max_simulations) - ds.sizes["design"])
+                X = self.propose(ds, models, q, round_seed(s.seed, r))
+                self.log(f"round {r}: fits and acquisition {time.perf_counter() - t0:.1f} s, {len(X)} designs proposed")
                 if len(X) == 0:
                     reason = f"round {r}: no new candidate (all within budget.dedup_distance of simulated points)"
                     break
@@ -407,8 +405,7 @@ class DesignSearch:
             i, after = self.best(ds)
             stale = 0 if improved(before, after, float(b.min_improvement)) else stale + 1
             state = "feasible" if after[0] == 0 else "infeasible, violation"
-            self.log(f"round {r}: {len(trials)} surrogate trials and fits {t_study:.1f} s; "
-                     f"{ds.sizes['design']} simulations; best #{i} ({state} {after[1]:.6g})")
+            self.log(f"round {r}: {ds.sizes['design']} simulations; best #{i} ({state} {after[1]:.6g})")
             if stale >= int(b.patience):
                 reason = f"verified best not improved for {stale} rounds"
                 break

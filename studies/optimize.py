@@ -2,10 +2,10 @@
 
 Runs the whole search on the embedded defaults (``conf/study/pinion.yaml``: the pinion TSRB
 of thesis 7.4 against TRB 31313 and Table 7.4's design), resuming from the study folder
-``outputs/studies/<name>/`` and its Optuna storage when run again. Overrides use Hydra syntax::
+``outputs/studies/<name>/`` when run again. Overrides use Hydra syntax::
 
     python -m studies.optimize study=size_32208
-    python -m studies.optimize study.sampler=nsga2 study.budget.max_simulations=200
+    python -m studies.optimize study.budget.verify_per_round=8 study.budget.max_simulations=200
     python -m studies.optimize study.objective=pmax study.name=pinion_pmax
 
 Exit status 0 with a verified feasible design, 1 when none was found, 2 for a bad config: one
@@ -17,8 +17,6 @@ import argparse
 import sys
 import time
 from pathlib import Path
-
-import optuna
 
 from sim.api.cli import PROJECT_ERRORS, refused
 from studies.config import LOAD_KEYS, StudyConfigError, compose, output_dir
@@ -61,9 +59,8 @@ def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m studies.optimize", description=__doc__.split("\n\n")[0],
                                      epilog="Overrides: study=NAME selects conf/study/NAME.yaml; study.KEY=VALUE "
                                             "changes one key; solver.*, material.*, ... go to every simulation.")
-    parser.add_argument("overrides", nargs="*", help="Hydra-style overrides, e.g. study.sampler=gp")
+    parser.add_argument("overrides", nargs="*", help="Hydra-style overrides, e.g. study.budget.max_simulations=200")
     args = parser.parse_args(argv)
-    optuna.logging.set_verbosity(optuna.logging.WARNING)
     t0 = time.perf_counter()
     try:
         cfg = compose(args.overrides)   # every input checked: nothing is written before this passes

@@ -18,7 +18,7 @@ import numpy as np  # noqa: E402
 from sim.io import write_netcdf_atomic  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
 from studies.evaluate import STATUS, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
-from surrogate import cross_validate  # noqa: E402
+from surrogate import cross_validate_outputs  # noqa: E402
 
 COLUMNS = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "edge_stress")
 
@@ -52,9 +52,8 @@ def comparison_rows(search, best):
 def cross_validation(search, ds):
     """k-fold CV of every modelled output on the final training data: {name: CrossValidation}."""
     s = search.study.surrogate
-    return {q: cross_validate(X, y, search.space.bounds, log, search.settings, int(s.cv_folds), float(s.interval),
-                              q, units)
-            for q, (X, y, log, units) in search.training_sets(ds).items() if len(y) >= int(s.cv_folds)}
+    return cross_validate_outputs(search.training_sets(ds), search.space.bounds, search.settings, int(s.cv_folds),
+                                  float(s.interval))
 
 
 def load_case_label(study):
@@ -104,7 +103,7 @@ def plot_history(search, vds, refs, path):
 
 def plot_parity(cv, units, path, load_label):
     """Out-of-fold prediction against simulation, with the prediction intervals; ``units`` by name."""
-    names = [q for q in cv if q != "converged"]
+    names = list(cv)
     fig, axes = plt.subplots(1, len(names), figsize=(3.4 * len(names), 3.4), squeeze=False)
     for ax, q in zip(axes[0], names):
         c = cv[q]
@@ -227,7 +226,9 @@ def write_report(search, ds, reason):
         f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}",
         "",
         f"Load case Fa = {s.load.Fa:g} N, Fr = {s.load.Fr:g} N, {s.load.speed:g} rpm, tilt {s.load.tilt:g} deg; "
-        f"objective `{search.objective}` (minimised); sampler {s.sampler}.",
+        f"objective `{search.objective}` (minimised); constrained Bayesian optimisation, "
+        f"{s.budget.verify_per_round} designs a round; surrogate intervals "
+        f"{'calibrated' if s.surrogate.calibrate else 'not calibrated'}.",
         f"Limits: |axial displacement| <= {search.limits.axial_displacement_max:g} mm, "
         f"pmax <= {search.limits.pmax_max:.1f} MPa, L10 >= {search.limits.L10_min:.4g} 1e6 rev, "
         f"edge stress {'forbidden' if search.limits.edge_stress else 'allowed'}, "

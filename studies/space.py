@@ -66,6 +66,13 @@ class DesignSpace:
             values["ratings_alpha"] = values["alpha"]
         return values
 
+    def ratings_alpha(self, X):
+        """``ratings_alpha`` [deg] of each design of X (n, d), as :meth:`bearing_values` sets it."""
+        X = np.atleast_2d(X)
+        if "alpha" in self.names:
+            return X[:, self.names.index("alpha")].astype(float)
+        return np.full(len(X), self.template["ratings_alpha"])
+
     def suggest(self, trial):
         """Ask an Optuna trial for one point; returns x in column order."""
         return np.array([trial.suggest_float(n, lo, hi) for n, lo, hi in zip(self.names, self.low, self.high)])

@@ -19,9 +19,10 @@ journal file or SQLite on one). Every full simulation is one trial of that study
   result-defining configuration is the same, refused otherwise.
 - A worker simulates a queued design if there is one. Otherwise, once no design of the initial
   design is queued or running, it proposes one: it fits the surrogates to every COMPLETE trial
-  in the storage, runs a surrogate Optuna study in memory (seeded by the study seed, the number
-  of trials and the worker index) and takes its best candidate at least ``budget.dedup_distance``
-  from every stored point, those queued or being simulated elsewhere included.
+  in the storage and takes the design of highest constrained acquisition (surrogate.acquisition,
+  seeded by the study seed, the number of trials and the worker index) at least
+  ``budget.dedup_distance`` from every stored point, those queued or being simulated elsewhere
+  included (fantasised by the kriging believer).
 - Before it simulates, a trial claims its design and one of ``budget.max_simulations`` slots in
   a claims table (name unique per study: a table beside Optuna's in the same database, or, for
   a journal, files created atomically beside it). A design claimed by another trial is PRUNED as
@@ -60,7 +61,7 @@ from studies.constraints import FAILED, Limits, margins
 from studies.evaluate import evaluate_design, points_dataset
 from studies.loop import DesignSearch, round_seed
 from studies.report import write_report
-from studies.search import make_sampler, make_storage, open_study, run_trials
+from studies.search import make_storage
 
 STUDY_ERRORS = PROJECT_ERRORS + (StudyConfigError,)
 CREATED_ATTR = "created"      # study user attribute: the study and its initial design are complete
@@ -298,15 +299,8 @@ class Workers:
         models = search.fit(ds)
         pending = [x for t in trials if t.state in (TrialState.RUNNING, TrialState.WAITING)
                    and (x := known_design(t, search.space.names)) is not None]
-        n = len(trials)
-
-        def sampler_for(k):
-            return make_sampler(str(s.sampler), round_seed(s.seed, n, self.index, k), s.sampler_settings)
-
-        memory = open_study(optuna.storages.InMemoryStorage(), "proposal", sampler_for(0))
-        found = run_trials(memory, int(s.budget.trials_per_round), lambda t: search.surrogate_trial(t, models),
-                           sampler_for)
-        X = search.candidates(found, ds, 1, np.array(pending).reshape(len(pending), len(search.space.names)))
+        X = search.propose(ds, models, 1, round_seed(s.seed, len(trials), self.index),
+                           np.array(pending).reshape(len(pending), len(search.space.names)))
         return dict(zip(search.space.names, map(float, X[0]))) if len(X) else None
 
     def _skip(self, trial, reason):

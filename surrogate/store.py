@@ -3,8 +3,8 @@
 A set of surrogates (:func:`save_surrogates`) is one folder::
 
     <folder>/manifest.json     what the folder holds, written last (below)
-    <folder>/<name>.joblib     the fitted GPSurrogate, pickled by joblib
-    <folder>/<name>.json       its metadata (GPSurrogate.metadata) and the model file's SHA-256
+    <folder>/<name>.joblib     the fitted GPSurrogate or SuccessClassifier, pickled by joblib
+    <folder>/<name>.json       its metadata (the model's ``metadata()``) and the model file's SHA-256
 
     manifest.json = {"format": "surrogate set", "version": 1, "created": ISO 8601 UTC,
                      "versions": {"sklearn", "numpy", "scipy", "joblib", "python"},
@@ -46,6 +46,7 @@ import numpy as np
 import scipy
 import sklearn
 
+from surrogate.classifier import SuccessClassifier
 from surrogate.gp import GPSurrogate
 
 try:
@@ -182,13 +183,13 @@ def _verified_model_bytes(path, on_version_mismatch, expected=None, check_versio
 
 
 def _unpickle(data, path, on_version_mismatch):
-    """The GPSurrogate in verified bytes ``data`` (of ``<path>.joblib``)."""
+    """The GPSurrogate or SuccessClassifier in verified bytes ``data`` (of ``<path>.joblib``)."""
     with warnings.catch_warnings():
         if on_version_mismatch == "warn":  # already warned, with the versions and how to refit
             warnings.simplefilter("ignore", InconsistentVersionWarning)
         model = joblib.load(io.BytesIO(data))
-    if not isinstance(model, GPSurrogate):
-        raise SurrogateLoadError(f"{path}.joblib does not hold a GPSurrogate")
+    if not isinstance(model, (GPSurrogate, SuccessClassifier)):
+        raise SurrogateLoadError(f"{path}.joblib does not hold a GPSurrogate or SuccessClassifier")
     return model
 
 
@@ -238,7 +239,7 @@ def saved_set(folder):
 
 
 def save_surrogates(models, folder):
-    """Save a dict name -> GPSurrogate as the set ``folder`` (module docstring), replacing any old set.
+    """Save a dict name -> GPSurrogate or SuccessClassifier as the set ``folder`` (module docstring), replacing any old set.
 
     The new set is written completely into a hidden sibling folder first, then swapped in with
     two atomic renames; a crash at any point leaves a complete set (the old or the new one) that
@@ -274,7 +275,7 @@ def save_surrogates(models, folder):
 
 
 def load_surrogates(folder, on_version_mismatch="error"):
-    """Load the set saved as ``folder``: dict name -> GPSurrogate.
+    """Load the set saved as ``folder``: dict name -> GPSurrogate or SuccessClassifier.
 
     Reads the manifest (of ``folder``, or of ``<folder>.old`` after a save interrupted between
     its renames), checks the scikit-learn version it records, and loads exactly the models it

@@ -24,7 +24,7 @@ from studies.workers import FileClaims, RDBClaims, Workers, claim, design_key, s
 
 BUDGET = 20
 TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
-        f"study.budget.max_simulations={BUDGET}", "study.budget.trials_per_round=25", "study.n_jobs=1",
+        f"study.budget.max_simulations={BUDGET}", "study.n_jobs=1",
         "study.surrogate.n_restarts_optimizer=0", "study.sampler_settings.n_startup_trials=10",
         # heartbeat every second, a trial without one for 3 s is failed and retried (default 10 s / 60 s)
         "study.workers.heartbeat_interval=1", "study.workers.grace_period=3", "study.workers.poll_interval=0.2"]

@@ -21,7 +21,7 @@ from studies.report import ratio_in_words, write_report
 from studies.search import make_sampler, open_study, run_trials, trial_margins
 
 TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
-        "study.budget.max_simulations=12", "study.budget.trials_per_round=25", "study.budget.verify_per_round=2",
+        "study.budget.max_simulations=12", "study.budget.verify_per_round=2",
         "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0", "study.sampler_settings.n_startup_trials=10",
         "study.refine.max_simulations=0"]
 
@@ -185,3 +185,16 @@ def test_initial_design_resumes_point_by_point(finished, tmp_path):
     assert simulated == [("initial", 4)]
     for name in ("PCR", "kappa", "aP", "aPk", "alpha", "pmax", "status"):
         np.testing.assert_array_equal(ds[name].values, reference[name].values[:8])
+
+
+def test_a_round_killed_while_simulating_proposes_the_same_designs_again(finished):
+    """Resume inside a round (issue 16 item 4): the round's saved surrogates, loaded, and its seed give
+    the designs that round simulated, bit for bit, from the training data it started with."""
+    from studies.loop import round_seed
+    from surrogate import load_surrogates
+
+    search, ds, _ = finished
+    before = ds.isel(design=np.flatnonzero(ds["round"].values < 2))
+    models = load_surrogates(search.out / "surrogates" / "round_002")
+    X = search.propose(before, models, int(search.study.budget.verify_per_round), round_seed(search.study.seed, 2))
+    np.testing.assert_array_equal(X, np.column_stack([ds[n].values[ds["round"].values == 2] for n in search.space.names]))

@@ -49,6 +49,12 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("refine.max_simulations", -1, ["study.refine.max_simulations", "-1", ">= 0"]),
     ("refine.initial_step", 0.0, ["study.refine.initial_step", "0.0", "(0, 1]"]),
     ("refine.final_step", 0.5, ["study.refine.final_step", "0.5", "<= refine.initial_step"]),
+    ("acquisition.n_global", 0, ["study.acquisition.n_global", "0", ">= 1"]),
+    ("acquisition.n_local", -5, ["study.acquisition.n_local", "-5", ">= 0"]),
+    ("acquisition.local_scales", [0.1, 0.0], ["study.acquisition.local_scales", "[0.1, 0.0]", "(0, 1]"]),
+    ("acquisition.local_scales", [], ["study.acquisition.local_scales", "[]", "non-empty"]),
+    ("acquisition.n_centres", 0, ["study.acquisition.n_centres", "0", ">= 1"]),
+    ("surrogate.calibrate", "yes", ["study.surrogate.calibrate", "'yes'", "true or false"]),
 ])
 def test_bad_values_fail_at_start_naming_key_value_and_range(pinion, key, value, words):
     study = pinion.copy()

@@ -273,3 +273,21 @@ def test_unsafe_names_are_refused(old, tmp_path):
         with pytest.raises(ValueError, match="cannot be a file name"):
             save_surrogates({name: old["pmax"]}, tmp_path / "s")
     assert saved_set(tmp_path / "s") is None
+
+
+def test_success_classifier_saves_and_loads_with_the_regression_surrogates(tmp_path):
+    """A round's set holds the GP classifier of failed simulations beside the regression GPs
+    (studies.loop): its probabilities read back bit for bit, its metadata is JSON."""
+    from surrogate import SuccessClassifier
+
+    settings = GPSettings(2.5, (0.01, 100.0), (0.01, 100.0), (1e-10, 0.1), 0, 0, True, 0.95, 5)
+    X = qmc.Sobol(2, seed=0).random(32)
+    ok = X[:, 0] + X[:, 1] > 0.8
+    bounds = [[0.0, 1.0], [0.0, 1.0]]
+    models = {"success": SuccessClassifier(bounds, settings).fit(X, ok),
+              "y": GPSurrogate(bounds, False, settings, "y").fit(X, X.sum(axis=1))}
+    save_surrogates(models, tmp_path / "set")
+    loaded = load_surrogates(tmp_path / "set")
+    XT = qmc.Sobol(2, seed=1).random(16)
+    np.testing.assert_array_equal(loaded["success"].probability(XT), models["success"].probability(XT))
+    assert '"kind": "GaussianProcessClassifier' in (tmp_path / "set" / "success.json").read_text()
