@@ -41,14 +41,14 @@ from matplotlib.figure import Figure
 
 from sim.api import simulate_batch
 from sim.io import write_netcdf_atomic
-from studies.config import PARETO_OBJECTIVES, compose, output_dir
+from studies.config import PARETO_OBJECTIVES, compose, output_dir, storage_spec
 from studies.constraints import FAILED, margins, rank_key
 from studies.evaluate import RECORDED, design_config, evaluate_design
 from studies.loop import DesignSearch
 from studies.optimize import STUDY_ERRORS, new_folders, refused, remove_if_empty
 from studies.report import load_case_label
 from studies.refine import local_refine
-from studies.search import complete_trials, make_sampler, open_study, run_trials, trial_margins
+from studies.search import complete_trials, make_sampler, make_storage, open_study, run_trials, trial_margins
 
 # objectives a front may pair (studies.config.PARETO_OBJECTIVES): optimisation direction, label, units (DATA.md)
 OBJECTIVES = {"power_loss": ("minimize", "frictional power loss", "W"),
@@ -89,6 +89,7 @@ class PointStore:
         self.path = out / "local_points.nc"
         self.local = self._load()
         self.explored = []     # COMPLETE NSGA-II trials of all fronts
+        self.storage = make_storage(storage_spec(search.study, search.out))   # stage A's Optuna studies
 
     def simulate(self, x):
         """(objectives (all of OBJECTIVES; NaN without a result), margins (all of limits.names),
@@ -174,7 +175,7 @@ class ParetoFront:
     def explore(self, n_trials, log):
         s = self.search
         name = f"{s.study.name}-pareto-{'-'.join(self.pair)}"
-        study = open_study(s.storage, name, None, directions=self.directions)
+        study = open_study(self.store.storage, name, None, directions=self.directions)
 
         def sampler_for(k):
             return make_sampler("nsga2", int(s.study.seed) + k, s.study.sampler_settings)
