@@ -418,8 +418,9 @@ def film_traction_maxwell(p, v, h, phi, eta_p, tau0, c_tau, G, t_transit):
 # traction; its value then does not depend on the iteration count, which the finite-difference
 # Jacobian of the kinematics needs).
 EYRING_REL_ERROR = 1e-16
-# Halley steps of the Eyring solve before it reports no convergence; from the start below the root
-# is reached in at most 3 steps for S, De in [0, 1e300] (tests/friction/test_traction_law.py).
+# Halley steps of the Eyring solve before it reports no convergence; from the start above the root
+# it is reached in at most 3 steps (measured: 20000 pairs S, De log-uniform in [1e-300, 1e300], 20 %
+# De = 0; tests/friction/test_traction_law.py asserts at most 6 over S in [1e-12, 1e250]).
 EYRING_MAX_STEPS = 100
 # S above which cosh(asinh S) = sqrt(1 + S^2) is S to rounding (1 + S^2 rounds to S^2 from
 # S = 2^27 on) and below the overflow of S^2 (1.3e154): sqrt(1 + S^2) instead of the slower
