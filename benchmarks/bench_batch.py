@@ -24,6 +24,15 @@ of ``--calls`` warm calls (interleaved: one of each per round), wall and CPU tim
 and the ratio simulate / physics (target <= 1.2). On a shared machine the wall times swing
 with the other processes' load; the CPU times and ratios of one run hardly do.
 
+Measured (2026-11-25, commit 19615cd, the shared 2-core machine at load average 9: wall rates
+there are not the machine's, and CPU times grow with it: the parent commit's reference case
+took 16.35 ms idle, 18.0-22.7 ms CPU at load 9-11): reference case
+physics 20.6 ms CPU, ``simulate`` 23.9 ms, ratio 1.16 (CPU) / 1.20 (wall); batch in one
+process 19.0 ms CPU per case, of which (per case, separate timing at the same load) physics
+17-18 ms, model builds 0.9 ms, YAML 0.9 ms, limits 0.3 ms, resolve 0.3 ms, Dataset 0.2 ms.
+150 cases/s on 2 cores needs <= 13.3 ms CPU per case in all, setup and physics: the target
+is bounded by the per-case physics (the setup around it is 2.6 ms, 13 %, of the CPU per case).
+
 Run from the repository root::
 
     python benchmarks/bench_batch.py [--repeats 5] [--workers N] [--calls 41]

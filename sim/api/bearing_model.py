@@ -99,6 +99,7 @@ class BearingModel:
     def __init__(self, geometry: Geometry, material, settings: SolverSettings):
         self.geometry = g = geometry
         self.settings = s = settings
+        self._static = None     # static load limit's angles and C0 (_static_ratings)
         a = g.arrays
         self.E_star = contact_modulus(g.E, g.nu)
         # ISO/TS 16281: a roller with both raceway contacts in series carries
@@ -116,6 +117,25 @@ class BearingModel:
                                      float(s.roller_tolerance_ratio), float(s.forcing),
                                      float(s.roller_step_interference), float(s.roller_step_length),
                                      int(s.line_search_halvings), float(s.ring_step_fraction))
+
+    def _static_ratings(self):
+        """(angle [deg], its source, C0 [N]) of the static load limit of :meth:`check_limits`, the
+        cup angle alpha + gamma and ratings_alpha; computed on the first call (they depend on the
+        geometry alone), InputError when an angle is not below 90 deg."""
+        if self._static is None:
+            g = self.geometry
+            angles = {float(np.degrees(g.cup_angle)): "the cup angle alpha + gamma",
+                      float(g.ratings_alpha): "bearing.ratings_alpha" if g.type == "TSRB" else
+                      "the cup angle alpha + gamma"}
+            for angle in angles:
+                if not angle < 90.0:   # alpha + gamma: ISO 76 rates radial bearings only
+                    raise InputError(f"bearing.alpha = {float(np.degrees(g.alpha)):g} deg is outside the allowed "
+                                     f"range for this bearing: its cup angle alpha + gamma = {angle:g} deg must be "
+                                     "< 90 deg, where ISO 76 / ISO 281 rate a radial roller bearing (the static "
+                                     "load limit needs C0)")
+            self._static = [(angle, source, float(ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, angle)))
+                            for angle, source in angles.items()]
+        return self._static
 
     def check_limits(self, op: OperatingPoint):
         """Refuse a load case beyond the validity of the model, before any solve: InputError
@@ -137,14 +157,7 @@ class BearingModel:
                              "heat balance govern, which the quasi-static model lacks; conf/solver/quasi_static.yaml)")
         k = s.max_static_load_ratio
         worst = None
-        angles = {float(np.degrees(g.cup_angle)): "the cup angle alpha + gamma",
-                  float(g.ratings_alpha): "bearing.ratings_alpha" if g.type == "TSRB" else "the cup angle alpha + gamma"}
-        for angle, source in angles.items():
-            if not angle < 90.0:   # alpha + gamma: ISO 76 rates radial bearings only
-                raise InputError(f"bearing.alpha = {float(np.degrees(g.alpha)):g} deg is outside the allowed range for "
-                                 f"this bearing: its cup angle alpha + gamma = {angle:g} deg must be < 90 deg, where "
-                                 "ISO 76 / ISO 281 rate a radial roller bearing (the static load limit needs C0)")
-            C0 = float(ratings.static_load_rating(g.Dwe, g.Dpw, g.Lwe, g.Z, angle))
+        for angle, source, C0 in self._static_ratings():
             with np.errstate(divide="ignore"):    # Y0 = 0.22 cot(angle) is infinite at an angle of 0
                 P0 = float(ratings.equivalent_static_load(op.Fr, op.Fa, angle))
             if worst is None or P0 / C0 > worst[0]:

@@ -52,9 +52,11 @@ import numpy as np
 from sim._math.jit import kernel
 from sim._math.roots import root_search, root_search_step
 from sim.physics.contact import hertz_line_half_width, hertz_line_pressure
-from sim.physics.ehl import (film_line, film_point, film_temperature_rise, flash_temperature_rise, pressure_viscosity,
-                             rolling_force_hysteresis, rolling_moment_hydrodynamic, solid_load_share, thermal_loading,
-                             film_thermal_factor_gupta, traction_eyring, traction_per_speed)
+from sim.physics.ehl import (film_line, film_point, film_temperature_rise, film_traction_eyring, film_traction_maxwell,
+                             flash_temperature_rise, pressure_term, rolling_force_hysteresis,
+                             rolling_moment_hydrodynamic, solid_load_share, thermal_loading, film_thermal_factor_gupta,
+                             traction_eyring, traction_per_speed, traction_solid, viscosity_at_pressure,
+                             viscosity_log_ratio)
 
 # Loss and torque channels of the kernels (order of the DATA.md `component` coordinate).
 COMPONENTS = ["rolling", "hysteresis", "sliding", "drilling", "rib", "cage", "drag"]
@@ -116,6 +118,15 @@ def _traction(par, p, v, h, phi, eta_p, t_transit):
         return traction_eyring(p, v, h, phi, eta_p, par.tau_E, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G,
                                t_transit)
     return traction_per_speed(p, v, h, phi, eta_p, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G, t_transit)
+
+
+@kernel
+def _film_traction(par, p, v, h, phi, eta_p, t_transit):
+    """The film part of :func:`_traction` (h > 0, phi < 1): :func:`_traction` is the solid part
+    (sim.physics.ehl.traction_solid) plus this."""
+    if par.traction_law == TRACTION_EYRING:
+        return film_traction_eyring(p, v, h, phi, eta_p, par.tau_E, par.tau0, par.c_tau, par.G, t_transit)
+    return film_traction_maxwell(p, v, h, phi, eta_p, par.tau0, par.c_tau, par.G, t_transit)
 
 
 # The solved bearing as the friction kernels read it (numba-supported named tuple).
@@ -186,35 +197,46 @@ def _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz):
     return wR * (uz * (Xr - cr) - ur * (Xz - cz)), Om * Xr
 
 
+# Rows of a contact's table of width points (:func:`_width_points`, :func:`_heat_flux`): what the
+# film temperature solve needs at every trial temperature but does not depend on the viscosity.
+WP_P, WP_TERM, WP_V, WP_W, WP_SOLID = range(5)   # pressure [MPa], sim.physics.ehl.pressure_term [1],
+NWP = 5                                          # sliding speed [mm/s], weight [1], solid traction / speed
+
+
 @kernel
-def _heat_flux(theta, p0k, bk, hk, phik, st, ws, par, quad):
+def _width_points(p0k, bk, par, quad, pts):
+    """Pressures of a contact's width points and their :func:`sim.physics.ehl.pressure_term` into
+    ``pts[WP_P]``, ``pts[WP_TERM]``; returns the number of points. Line slice (bk > 0): p0 cos(t)
+    at the nodes of ``quad``; point contact (bk = 0, the rib): one point at the mean pressure p0k."""
+    npts = quad.wq.shape[0] if bk > 0.0 else 1
+    for i in range(npts):
+        p = p0k * quad.cos_t[i] if bk > 0.0 else p0k
+        pts[WP_P, i] = p
+        pts[WP_TERM, i] = pressure_term(p, par.alpha, par.Z, par.pv_model)
+    return npts
+
+
+@kernel
+def _heat_flux(theta, hk, phik, npts, q_sol, par, pts):
     """Mean frictional heat flux of a contact [N/(mm s)]: (lubricant film, total).
 
-    Line slice (bk > 0): traction (5.17) at the Hertz pressure p0 cos(t) and the sliding speed
+    Line slice: traction (5.17) at the Hertz pressure p0 cos(t) and the sliding speed
     sqrt(st^2 + (y ws)^2), y = b sin(t), averaged over the width as in :func:`roller_friction`;
-    point contact (bk = 0, the rib): at the mean pressure p0k and the speed |st|. ``theta``
-    scales the ambient viscosity (thermal reduction).
+    point contact (the rib): at the mean pressure and the speed |st|; the ``npts`` points of
+    ``pts`` (:func:`_viscosity_factor_at` fills them). ``theta`` scales the ambient viscosity
+    (thermal reduction); ``q_sol``: the solid part of the heat, which does not depend on it.
     """
-    cos_t, sin_t, wq = quad
     eta = par.eta0 * theta
+    log_ratio = viscosity_log_ratio(eta, par.pv_model)
     q_tot = 0.0
-    q_sol = 0.0
-    npts = wq.shape[0] if bk > 0.0 else 1
     for i in range(npts):
-        if bk > 0.0:
-            ct = cos_t[i]
-            p = p0k * ct
-            vy = bk * sin_t[i] * ws
-            v = np.sqrt(st * st + vy * vy)
-            weight = ct * wq[i]                  # sum of cos(t) w over (0, pi/2) = 1
-        else:
-            p = p0k
-            v = abs(st)
-            weight = 1.0
-        eta_p = pressure_viscosity(p, eta, par.alpha, par.Z, par.pv_model)
-        g = _traction(par, p, v, hk, phik, eta_p, NO_RELAXATION)
-        q_tot += weight * g * v * v
-        q_sol += weight * phik * par.mu_s * p * v * np.tanh(v / par.v_s)
+        p = pts[WP_P, i]
+        v = pts[WP_V, i]
+        g = pts[WP_SOLID, i]
+        if phik < 1.0:
+            eta_p = viscosity_at_pressure(eta, log_ratio, pts[WP_TERM, i], par.pv_model)
+            g += _film_traction(par, p, v, hk, phik, eta_p, NO_RELAXATION)
+        q_tot += pts[WP_W, i] * g * v * v
     return q_tot - q_sol, q_tot
 
 
@@ -247,14 +269,39 @@ def _viscosity_factor(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad):
     U1, U2 : float
         Surface speeds of roller and ring [mm/s]; sliding speed U1 - U2.
     """
+    pts = np.empty((NWP, quad.wq.shape[0]))
+    npts = _width_points(p0k, bk, par, quad, pts)
+    return _viscosity_factor_at(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad, npts, pts)
+
+
+@kernel
+def _viscosity_factor_at(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad, npts, pts):
+    """:func:`_viscosity_factor` on the contact's ``npts`` width points ``pts`` (NWP, len(quad.wq)),
+    pressures filled by :func:`_width_points` (:func:`lubrication_state` reuses their pressure
+    terms for the film viscosity); their speeds, weights and solid traction are written here,
+    once for all trial temperatures."""
     if not par.thermal or hk <= 0.0:
         return 1.0
     beta = par.beta
     tol = par.dT_tol
     st = U1 - U2
+    q_sol = 0.0
+    for i in range(npts):
+        p = pts[WP_P, i]
+        if bk > 0.0:
+            vy = bk * quad.sin_t[i] * ws
+            v = np.sqrt(st * st + vy * vy)
+            weight = quad.cos_t[i] * quad.wq[i]        # sum of cos(t) w over (0, pi/2) = 1
+        else:
+            v = abs(st)
+            weight = 1.0
+        pts[WP_V, i] = v
+        pts[WP_W, i] = weight
+        pts[WP_SOLID, i] = traction_solid(p, v, phik, par.mu_s, par.v_s)
+        q_sol += weight * phik * par.mu_s * p * v * np.tanh(v / par.v_s)
 
     def rise(dT):
-        q_film, q_tot = _heat_flux(np.exp(-beta * dT), p0k, bk, hk, phik, st, ws, par, quad)
+        q_film, q_tot = _heat_flux(np.exp(-beta * dT), hk, phik, npts, q_sol, par, pts)
         return (film_temperature_rise(q_film, hk, par.k_oil)
                 + flash_temperature_rise(q_tot, half_length, U1, U2, par.k_steel, par.kappa_steel))
 
@@ -289,10 +336,10 @@ def lubrication_state(wR, wc, wi, active, case):
     brg, film, par, quad = case.bearing, case.film, case.par, case.quad
     q, Qrib, R_eq, w, E_star = brg.q, brg.Qrib, brg.R_eq, brg.w, brg.E_star
     h, Phi, Fh, Fy, p0, b, Eta = film.h, film.Phi, film.Fh, film.Fy, film.p0, film.b, film.Eta
-    cos_t = quad.cos_t
     Z = q.shape[0]
     n = q.shape[2]
     Ep = 2.0 * E_star                  # E' of the EHL film formulas [MPa]
+    pts = np.empty((NWP, quad.wq.shape[0]))
     for j in range(Z):
         if not active[j]:
             continue
@@ -341,10 +388,13 @@ def lubrication_state(wR, wc, wi, active, case):
                 Fh[j, s, k] = phi_T * rolling_moment_hydrodynamic(u, qk, R, w, par.eta0, par.alpha, Ep) / R
                 Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
                 ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
-                theta = _viscosity_factor(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, par, quad)
-                for i in range(cos_t.shape[0]):
-                    Eta[j, s, k, i] = pressure_viscosity(p0[j, s, k] * cos_t[i], par.eta0 * theta,
-                                                         par.alpha, par.Z, par.pv_model)
+                npts = _width_points(p0[j, s, k], bk, par, quad, pts)
+                theta = _viscosity_factor_at(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, par, quad, npts,
+                                             pts)
+                eta = par.eta0 * theta
+                log_ratio = viscosity_log_ratio(eta, par.pv_model)
+                for i in range(npts):
+                    Eta[j, s, k, i] = viscosity_at_pressure(eta, log_ratio, pts[WP_TERM, i], par.pv_model)
         film.hrib[j] = 0.0
         film.Phirib[j] = 0.0
         film.prib[j] = 0.0
@@ -362,11 +412,14 @@ def lubrication_state(wR, wc, wi, active, case):
                 continue
             hrib = film_point(u, Qrib[j], R_end, R_end, par.eta0, par.alpha, Ep)
             Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
-            theta = _viscosity_factor(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2, par, quad)
+            npts = _width_points(prib, 0.0, par, quad, pts)
+            theta = _viscosity_factor_at(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2, par, quad, npts, pts)
             film.prib[j] = prib
             film.hrib[j] = hrib
             film.Phirib[j] = Phirib
-            film.Etarib[j] = pressure_viscosity(prib, par.eta0 * theta, par.alpha, par.Z, par.pv_model)
+            eta = par.eta0 * theta
+            film.Etarib[j] = viscosity_at_pressure(eta, viscosity_log_ratio(eta, par.pv_model), pts[WP_TERM, 0],
+                                                   par.pv_model)
 
 
 @kernel

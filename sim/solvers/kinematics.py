@@ -204,7 +204,8 @@ def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals, jac):
     # bracketed), the others at its speed
     if presolve:
         q = case.bearing.q
-        jmax = -1
+        jmax = np.int64(-1)   # not the literal -1: it typed the call below Literal[int](-1), a second copy
+                              # of _solve_roller_speed and roller_friction to compile (measured)
         qmax = -1.0
         for j in range(Z):
             if active[j] and q[j].sum() > qmax:
