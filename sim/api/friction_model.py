@@ -6,8 +6,8 @@ solved case: film, kinematics from the traction balance, torque and its breakdow
 import numpy as np
 
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
-                                  FrictionParams, width_quadrature)
+from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, NC, NEV, ContactLoads, FilmState,
+                                  FrictionCase, FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.symmetry import symmetry_classes
 from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_friction
@@ -97,6 +97,13 @@ class FrictionModel:
             # F_D = 1/2 rho X C_D Dwe Lwe (omega_c Dpw/2)^2 with rho [kg/m^3] as [t/mm^3]
             self.drag_factor = 0.5 * X * cd * g.Dwe * g.Lwe * (0.5 * g.Dpw) ** 2 * T_PER_MM3_PER_KG_PER_M3
         self.drag_model = model
+        # cage pocket that holds a skewed roller (sim.physics.friction, "Roller skew"): clearance c and
+        # stiffness k of the pocket at each roller end give the skew at contact atan(c / Lwe) and the
+        # couple per skew beyond it, k Lwe^2 / 2 (two end contacts at +-Lwe/2, each k (Lwe/2) dpsi)
+        skew = friction["skew"]
+        skew_on = bool(skew["enabled"])
+        skew_clearance = float(np.arctan(float(skew["pocket_clearance"]) / g.Lwe))
+        skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
         # the per-case fields (eta0, Z, beta, drag_k: oil temperature) are set by evaluate
         self.par = FrictionParams(
             eta0=np.nan, alpha=float(lubricant.pressure_viscosity), Z=np.nan,
@@ -107,7 +114,8 @@ class FrictionModel:
             sigma=sigma, B_ZH=B_ZH, C_ZH=C_ZH, sigma_rib=sigma_rib, B_ZH_rib=B_ZH_rib, C_ZH_rib=C_ZH_rib,
             film=FILM_FORMULAS[film], drag_k=np.nan, thermal=thermal, k_oil=float(lubricant.thermal_conductivity),
             k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol,
-            inlet_heating=bool(friction["inlet_shear_heating"]), boundary_only=False)
+            inlet_heating=bool(friction["inlet_shear_heating"]), boundary_only=False, skew=skew_on,
+            skew_clearance=skew_clearance, skew_stiffness=skew_stiffness)
         self.quad = width_quadrature(friction["width_points"])
 
     def evaluate(self, op, raw, start=None):
@@ -144,12 +152,14 @@ class FrictionModel:
         X, Cen, Ax = frames.X, frames.Cen, frames.Ax
         q = raw["line_load"]
         bearing = ContactLoads(q=q, Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
-                                E_star=float(self.E_star), R_end=float(a["rib"][2]), rho_m=0.5 * g.Dwe)
+                                E_star=float(self.E_star), R_end=float(a["rib"][2]), x_end=float(a["rib"][0]),
+                                nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe)
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
+        psi = np.zeros(Z)               # roller skews [rad] (stay 0 without friction.skew)
         jac = empty_jacobian(Z)
         if start is not None and not static:
-            wc, wR, jac = start[0], start[1].copy(), start[2]
+            wc, wR, psi, jac = start[0], start[1].copy(), start[2].copy(), start[3]
         load = raw["Q"].sum(axis=1)
         # the rollers one solution stands for: the classes of the quasi-static solve (sim.solvers.symmetry)
         _, weight, source = symmetry_classes(Z, float(op.Fr), float(np.radians(op.tilt)), raw["roller_loads"])
@@ -165,11 +175,14 @@ class FrictionModel:
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw      # at the pitch radius
         settings = KinematicsSettings(active, weight, tol_M, tol_T, self.max_iterations, self.traction_kinematics,
                                       self.seed_tolerance_factor)
-        # cage pocket friction on each roller, force along v' (sim.physics.friction.cage_pocket_loads):
-        # the friction load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
+        # cage pocket friction on each roller, force along v', and with skew the lateral raceway
+        # tractions (sim.physics.friction.cage_pocket_loads): the friction loads the quasi-static
+        # balance takes back (BearingModel.solve(op, roller_loads))
         roller_loads = np.zeros((Z, 3))
-        wc, converged = solve_friction(wc, wR, wi, start is None or static, case, settings, totals, roller_loads, jac)
+        wc, converged = solve_friction(wc, wR, psi, wi, start is None or static, case, settings, totals,
+                                       roller_loads, jac)
         wR[:] = wR[source]
+        psi[:] = psi[source]
         roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
         j = int(np.argmax(load))
@@ -186,6 +199,7 @@ class FrictionModel:
         lam = np.array([film.h[j, s, kmax[s]] / par.sigma for s in range(2)])
         if static:   # power / speed is the same at any speed (Coulomb friction): that of the nominal speed
             components = power / wi
+            skew_sliding = totals[EV_PSKEW] / wi
             power_loss = 0.0
             wc = 0.0
             wR[:] = 0.0
@@ -193,6 +207,7 @@ class FrictionModel:
             # breakdown in proportion to each mechanism's power: sums to the outer-ring torque exactly
             # (which itself equals power / omega_i up to the kinematic tolerance, module docstring)
             components = totals[EV_TOUT] * power / power.sum()
+            skew_sliding = totals[EV_TOUT] * totals[EV_PSKEW] / power.sum()
             power_loss = float(power.sum()) * W_PER_N_MM_PER_S
         return {
             "friction_converged": bool(converged),
@@ -204,6 +219,6 @@ class FrictionModel:
             "lambda_ratio": lam,
             "cage_speed": wc * 30.0 / np.pi,                         # rad/s -> rpm
             "roller_loads": roller_loads,
-            "kinematics": (wc, wR.copy(), jac),
-        }
+            "kinematics": (wc, wR.copy(), psi.copy(), jac),
+        } | ({"roller_skew": np.degrees(psi), "skew_sliding": float(skew_sliding)} if par.skew else {})
 
