@@ -267,7 +267,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     start every active roller from its speed (measured: the balanced roller speeds of a case
     differ by < 0.1 % from roller to roller while rolling kinematics are 2-7 % off for the
     crowned TSRBs; one bracketed solve instead of one per roller, the Newton iteration does the
-    rest); with skew, then each active roller's skew at that speed (bracketed).
+    rest); with skew, that roller's skew at its speed (bracketed), the start of every roller's.
     """
     active, weight, tol_M, tol_T = settings.active, settings.weight, settings.tol_M, settings.tol_T
     dMdw, dTdw, dMdc, dTdc, dMdp, dSdw, dSdp, dSdc, dTdp, known = jac
@@ -298,11 +298,13 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
                 qmax = q[j].sum()
         if jmax >= 0:
             w_star = _solve_roller_speed(jmax, wR[jmax], psi[jmax], wc, wi, case, ev, tol_M, settings.max_iter)[0]
+            p_star = psi[jmax]
+            if skew:
+                p_star = _solve_roller_skew(jmax, w_star, p_star, wc, wi, case, ev, tol_M, settings.max_iter)[0]
             for j in range(Z):
                 if active[j]:
                     wR[j] = w_star
-                    if skew:
-                        psi[j] = _solve_roller_skew(j, w_star, psi[j], wc, wi, case, ev, tol_M, settings.max_iter)[0]
+                    psi[j] = p_star
     _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals)
     for _ in range(settings.max_iter):
         norm, worst = _scaled_norm(T, M, S, psi, settings, par)
