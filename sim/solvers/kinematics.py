@@ -283,6 +283,8 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     T2 = np.zeros(Z)
     dw = np.zeros(Z)
     dp = np.zeros(Z)
+    St = np.zeros(Z)
+    Dt = np.zeros(Z)
     wtrial = np.zeros(Z)
     ptrial = np.zeros(Z)
     tmp = np.zeros(NEV)
@@ -334,27 +336,39 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
                     dSdp[j] = (ev[EV_MS] - S[j]) / hp
                     dTdp[j] = (weight[j] * ev[EV_TZ] - T[j]) / hp
             known[0] = True
-        # eliminate the roller rows: dx_j = -J_j^-1 (R_j + c_j dc), J_j the roller's block,
-        # c_j its cage column; without skew J_j = dM_j/dw_j
+        # skew rows: the total moment St (friction and pocket) and its slope Dt. A slope that does
+        # not restore (Dt >= 0: inside the clearance, where the friction moment may grow with the
+        # skew) has no equilibrium there; Newton would send the roller the wrong way, and a step
+        # across the clearance does not lower the residual norm on the way (the moment keeps its
+        # size until the roller reaches the pocket). Such a roller is first brought to its own
+        # skew balance at the current speeds (bracketed, to the pocket the moment pushes it to).
+        if skew:
+            moved = False
+            for j in range(Z):
+                Sj, kp = pocket_skew_couple(psi[j], par)
+                St[j] = S[j] + Sj
+                Dt[j] = dSdp[j] + kp
+                if active[j] and Dt[j] >= 0.0 and abs(St[j]) > tol_M:
+                    psi[j] = _solve_roller_skew(j, wR[j], psi[j], wc, wi, case, ev, tol_M, settings.max_iter)[0]
+                    moved = True
+            if moved:
+                _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals)
+                continue
+        # eliminate the roller rows: dx_j = -J_j^-1 (R_j + c_j dc), J_j the roller's block
+        # [[dMdw, dMdp], [dSdw, Dt]], c_j its cage column; without skew J_j = dM_j/dw_j
         num = T.sum()
         den = dTdc.sum()
         for j in range(Z):
             if not (active[j] and dMdw[j] != 0.0):
                 continue
             if skew:
-                Sj, kp = pocket_skew_couple(psi[j], par)
-                Sj += S[j]
-                A = dMdw[j]
-                B = dMdp[j]
-                C = dSdw[j]
-                D = dSdp[j] + kp
-                det = A * D - B * C
+                det = dMdw[j] * Dt[j] - dMdp[j] * dSdw[j]
                 if det == 0.0:
                     continue
                 # r_j^T J_j^-1 for the row r_j = (dTdw, dTdp)
-                g1 = (dTdw[j] * D - dTdp[j] * C) / det
-                g2 = (dTdp[j] * A - dTdw[j] * B) / det
-                num -= g1 * M[j] + g2 * Sj
+                g1 = (dTdw[j] * Dt[j] - dTdp[j] * dSdw[j]) / det
+                g2 = (dTdp[j] * dMdw[j] - dTdw[j] * dMdp[j]) / det
+                num -= g1 * M[j] + g2 * St[j]
                 den -= g1 * dMdc[j] + g2 * dSdc[j]
             else:
                 num -= dTdw[j] * M[j] / dMdw[j]
@@ -371,17 +385,12 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
             if not (active[j] and dMdw[j] != 0.0):
                 continue
             if skew:
-                Sj, kp = pocket_skew_couple(psi[j], par)
                 r1 = M[j] + dMdc[j] * dc
-                r2 = S[j] + Sj + dSdc[j] * dc
-                A = dMdw[j]
-                B = dMdp[j]
-                C = dSdw[j]
-                D = dSdp[j] + kp
-                det = A * D - B * C
+                r2 = St[j] + dSdc[j] * dc
+                det = dMdw[j] * Dt[j] - dMdp[j] * dSdw[j]
                 if det != 0.0:
-                    dw[j] = -(D * r1 - B * r2) / det
-                    dp[j] = -(A * r2 - C * r1) / det
+                    dw[j] = -(Dt[j] * r1 - dMdp[j] * r2) / det
+                    dp[j] = -(dMdw[j] * r2 - dSdw[j] * r1) / det
             else:
                 dw[j] = -(M[j] + dMdc[j] * dc) / dMdw[j]
         step = 1.0
