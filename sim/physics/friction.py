@@ -33,14 +33,57 @@ n (into the ring) and rolling tangent a = n x e_t:
 - cage pocket: the cage supplies the tangential force F_cage that balances the roller along
   e_t; its pocket friction mu_c |F_cage| acts on the spinning roller surface: a moment about
   u' and a force mu_c F_cage sign(omega_R) along v', in the roller's meridian plane. That force
-  is the friction load that enters the quasi-static balance (``roller_loads``); the raceway
-  tractions act along e_t (out of the meridian plane, balanced by the cage) and their spin
-  integrals are even across the width, so they add no meridian-plane force.
+  is the friction load that enters the quasi-static balance (``roller_loads``); without skew the
+  raceway tractions act along e_t (out of the meridian plane, balanced by the cage) and their
+  spin integrals are even across the width, so they add no meridian-plane force (with skew: the
+  lateral tractions, "Roller skew" below).
 - drag (optional): fluid drag on the rollers, F_D = 1/2 rho X C_D Dwe Lwe (omega_c Dpw/2)^2
   (Harris & Kotzalas 2007, drag on rolling elements), reacted by the housing (outer ring).
 
-Unknowns: omega_R,j (roller moment about u' = 0, per roller) and omega_c (cage moment about z
-= 0: sum over rollers of the z-moments the contacts exert). At that equilibrium the torque the
+Roller skew (``par.skew``, config friction.skew; issue 18). The skew psi_j turns roller j
+about its radial axis v' through its centre, u'' = cos(psi) u' + sin(psi) e_t (skew of a roller
+about the axis normal to its raceway contacts: Harris & Kotzalas 2007, Advanced Concepts,
+roller skewing; Kellstroem 1979; Nelias, Bercea & Paleu 2008 for the TRB). Assumptions, first
+order in psi:
+
+- the load distribution stays planar: the slices are displaced along e_t by x psi, along the
+  rings' surfaces of revolution, so their penetrations change only by (x psi)^2 / (2 r), second order;
+  loads, frames and film are those of the meridian-plane solution;
+- kinematics (:func:`lateral_slip_rate`): the slice's contact point turns about the roller axis
+  by beta = b psi and lies at the azimuth phi = f psi = (x psi - y beta) / X_r, where roller and
+  ring normals agree (psi u'.n - beta v'.n = phi n_r, i.e. no normal relative velocity); the
+  slip along the rolling direction is unchanged, and along the generatrix a the slice slips by
+  s_l = -v1 (psi u'.a - beta v'.a - phi a_r) (a skewed cylinder: its surface speed times psi,
+  Harris & Kotzalas). tests/friction/test_skew.py checks it against the 3-D skewed slice;
+- traction: the same law (5.17) on the 2-D slip (s, s_l + y omega_s) per width point, traction
+  -g(|v|) v along the slip (one formula, :func:`_traction`); |v| is then not even in y, so both
+  halves of the width are integrated (twice the traction evaluations of an unskewed roller).
+  This gives F_t, the lateral force F_l along a and the spin moment M_n. The lateral force is a
+  meridian-plane load on the roller (EV_FU, EV_FV, EV_MW: fed back into the load distribution
+  with the cage pocket friction, ``roller_loads``); its power -F_l s_l is ``sliding`` and is
+  reported on its own (EV_PSKEW, output ``skew_sliding``); its moment about u'' (first order in
+  psi) enters the roller's spin balance; it has no z-moment. Lateral slip at the rib, and the
+  heating of the lateral slip in the film temperature, are neglected;
+- moment about the skew axis v' (EV_MS): x F_t of every slice (x = (X - c).u'), M_n (v'.n),
+  the rolling couple's v' component, the rib traction at x_rib, and the normal loads turned with
+  the contact points: -Q psi f (X_r (n_z v_r - n_r v_z) + n_r (d_r v_z - d_z v_r)), each normal
+  lying in the meridian plane of its contact point (for the rib the plane of the roller-end
+  sphere centre, azimuth psi x_end / r_centre: the TRB's end sphere has its centre near the
+  bearing axis, so its rib load turns strongly with the skew and holds the roller: a restoring
+  moment ~ Q_rib x_end^2 n_r / r_centre per radian). Their e_t components join F_t in the force
+  the cage supplies. Gyroscopic skew moments (I_x omega_R omega_c psi, < 1 N mm here) are neglected;
+- the cage pocket closes the balance. Nothing else holds a skewed roller elastically: without
+  the pocket a TSRB roller's friction moment keeps its sign across every skew (tested), so
+  there is no free equilibrium. The pocket is a clearance plus a stiff penalty couple
+  (:func:`pocket_skew_couple`): zero for |psi| <= psi_c = atan(c_p / Lwe) (c_p the pocket's
+  circumferential play, config friction.skew.pocket_clearance), -k (|psi| - psi_c) sign(psi)
+  beyond it, k = k_p Lwe^2 / 2 (two end contacts of stiffness k_p at +-Lwe/2). If the friction
+  moment vanishes inside the clearance the roller sits there (a free skew equilibrium: the TRBs,
+  held by the rib); otherwise it rests on the pocket at psi_c + M / k.
+
+Unknowns: omega_R,j (roller moment about u' = 0, per roller), with skew psi_j (moment about
+v' = 0, per roller), and omega_c (cage moment about z = 0: sum over rollers of the z-moments the
+contacts exert). At that equilibrium the torque the
 rollers and the oil exert on the outer ring equals power loss / omega_i exactly (energy
 balance); the kernels compute both independently so the identity checks the solution.
 """

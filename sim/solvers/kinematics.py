@@ -1,8 +1,10 @@
 """Roller and cage speeds from the traction balance (MODEL.md 5, thesis 5.4): the nonlinear
 solves over the friction kernels of :mod:`sim.physics.friction`.
 
-Unknowns: omega_R,j (roller moment about its axis u' = 0, per roller) and omega_c (cage
-moment about z = 0: sum over rollers of the z-moments the contacts exert).
+Unknowns: omega_R,j (roller moment about its axis u' = 0, per roller), with friction.skew the
+skew psi_j (moment about the roller's radial axis v' of friction and cage pocket = 0, per roller,
+sim.physics.friction "Roller skew") and omega_c (cage moment about z = 0: sum over rollers of
+the z-moments the contacts exert).
 :func:`solve_kinematics_newton` takes Newton steps on all of them at once (roller rows
 eliminated); :func:`solve_kinematics` brackets the cage speed, each roller at its own balance
 (slower, but it cannot leave the bracket).
