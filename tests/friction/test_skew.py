@@ -332,3 +332,20 @@ def test_pinion_tsrb_rests_on_its_pocket_and_the_trb_31313_is_held_by_its_rib():
     assert abs(tsrb.psi[0]) >= c
     assert 0.0 < abs(trb.psi[0]) < trb.case.par.skew_clearance
     assert abs(tsrb.psi[0]) > abs(trb.psi[0])
+
+
+@pytest.mark.parametrize("name", ["tsrb_pinion 35 kN", "trb_31313 35 kN"])
+def test_bracketing_fallback_finds_the_newton_solution(name):
+    """The fallback of solve_friction (sim.solvers.kinematics.solve_kinematics: cage speed
+    bracketed, each roller's speed and skew alternately bracketed) reaches the Newton solution:
+    skews within 1e-6 rad (the penalty couple's resolution of the moment tolerance is ~1e-9 rad
+    for the TSRB, the TRB rib stiffness ~1e5 N mm/rad resolves it to ~1e-8 rad), roller speeds
+    to 1e-6 relative."""
+    pb, wc, _ = solved(name)
+    active = pb.settings.active
+    wR, psi, totals = pb.wR.copy(), np.zeros_like(pb.psi), np.zeros(F.NEV)
+    wR[active] *= 1.01
+    wc_b, ok = solve_kinematics(wc * 0.99, pb.wi, wR, psi, pb.case, pb.settings, totals)
+    assert ok
+    np.testing.assert_allclose(psi[active], pb.psi[active], rtol=0.0, atol=1e-6)
+    np.testing.assert_allclose(wR[active], pb.wR[active], rtol=1e-6)
