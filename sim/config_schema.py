@@ -247,6 +247,15 @@ class DragConfig:
 
 
 @dataclass
+class SkewConfig:
+    """Roller skew as an unknown of the kinematics, held by the cage pocket (sim.physics.friction)."""
+
+    enabled: bool = key(Flag())
+    pocket_clearance: Any = key(Number(0.0, 5.0, low_open=True, units="mm"))
+    pocket_stiffness: Any = key(Number(0.0, 1e9, low_open=True, units="N/mm"))
+
+
+@dataclass
 class FrictionConfig:
     """EHL mixed friction (thesis 5.4)."""
 
@@ -266,6 +275,7 @@ class FrictionConfig:
     tolerance: Any = key(Number(1e-14, 1e-2, low_open=True))
     seed_tolerance_factor: Any = key(Number(1.0, 1e4))
     drag: DragConfig = field(default_factory=DragConfig)
+    skew: SkewConfig = field(default_factory=SkewConfig)
 
 
 @dataclass

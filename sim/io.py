@@ -35,7 +35,8 @@ CASE_VARIABLES = {
     "Q": (("roller", "race"), "N", "roller-raceway normal load"),
     "Q_rib": (("roller",), "N", "roller-end / rib normal load"),
     "pressure": (("race", "slice"), "MPa", "Hertz line-contact pressure along the most loaded roller"),
-    "roller_tilt": (("roller",), "deg", "roller tilt in its meridian plane"),
+    "roller_tilt": (("roller",), "deg", "roller tilt in its meridian plane: the roller axis against its nominal direction at the angle alpha to the bearing axis (unloaded, centred), positive turning the axis towards the roller's outward radial axis v' (sim.solvers.quasi_static theta); rings' own tilt not removed"),
+    "roller_skew": (("roller",), "deg", "roller skew: rotation of the roller axis out of its meridian plane about the roller's radial axis v', positive towards the rolling direction e_t of the cage frame; quasi-static, first order (sim.physics.friction)"),
     "roller_axial_displacement": (("roller",), "mm", "roller shift along its axis relative to the inner ring, + towards the large end"),
     "C_eff": ((), "N", "ISO 281 dynamic load rating with L_eff, thesis (7.1)"),
     "P": ((), "N", "ISO 281 equivalent dynamic load (2.12)"),
@@ -45,6 +46,7 @@ CASE_VARIABLES = {
     "torque": ((), "N*mm", "frictional torque of the bearing (on the outer ring); at speed 0 the breakaway torque (boundary friction, no film)"),
     "torque_component": (("component",), "N*mm", "torque breakdown by loss mechanism (power / inner-ring speed)"),
     "power_loss": ((), "W", "frictional power loss"),
+    "skew_sliding": ((), "N*mm", "part of torque_component 'sliding' caused by roller skew: power of the lateral tractions on the lateral slip of the skewed rollers / inner-ring speed"),
     "srr": (("race", "slice"), "1", "slide-to-roll ratio along the most loaded roller, roller against ring (2.25)"),
     "film_thickness": (("race", "slice"), "um", "central EHL film thickness along the most loaded roller"),
     "lambda_ratio": (("race",), "1", "specific film thickness at the most loaded slice (2.27)"),
@@ -54,7 +56,8 @@ CASE_VARIABLES = {
     "wall_time": ((), "s", "solver wall time of the case"),
 }
 # written only when some case computed them (friction enabled)
-OPTIONAL_VARIABLES = {"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio"}
+OPTIONAL_VARIABLES = {"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio",
+                      "roller_skew", "skew_sliding"}
 INTEGER_OR_BOOL = {"converged": bool, "edge_stress": bool, "iterations": np.int32}
 # design coordinates: name -> (units, long_name); the first ones are config inputs, the last three derived
 DESIGN_COORDS = {

@@ -3,11 +3,13 @@ solved case: film, kinematics from the traction balance, torque and its breakdow
 (MODEL.md 5, thesis 5.4; the kernels are in :mod:`sim.physics.friction` and
 :mod:`sim.solvers.kinematics`).
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_TOUT, NC, NEV, ContactLoads, FilmState, FrictionCase,
-                                  FrictionParams, width_quadrature)
+from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, NC, NEV, ContactLoads, FilmState,
+                                  FrictionCase, FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.symmetry import symmetry_classes
 from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_friction
@@ -39,6 +41,14 @@ W_PER_N_MM_PER_S = 1e-3
 # between resolutions 1e-10 and 1e-12 (3.4 % at 1e-6); the TSRBs' slips are 1e-3 to 1e-1.
 BREAKAWAY_NOMINAL_SPEED = 1.0       # rpm: sets the slip directions only
 BREAKAWAY_SLIP_RESOLUTION = 1e-10   # 1, v_s of the breakaway case over the pitch surface speed
+
+
+# The kinematic problem of one solved case (FrictionModel.problem): the kernel bundle and settings,
+# start values (cage speed wc, roller speeds wR (Z,) [rad/s], skews psi (Z,) [rad], Jacobian jac),
+# inner-ring speed wi [rad/s], whether the start is rolling kinematics (fresh) and the case static
+# (speed 0), the symmetry classes (weight, source: sim.solvers.symmetry) and the roller loads (Z,) [N].
+FrictionProblem = namedtuple("FrictionProblem", ["case", "settings", "wc", "wR", "psi", "wi", "jac", "fresh", "static",
+                                                 "weight", "source", "load"])
 
 
 class FrictionModel:
@@ -97,6 +107,13 @@ class FrictionModel:
             # F_D = 1/2 rho X C_D Dwe Lwe (omega_c Dpw/2)^2 with rho [kg/m^3] as [t/mm^3]
             self.drag_factor = 0.5 * X * cd * g.Dwe * g.Lwe * (0.5 * g.Dpw) ** 2 * T_PER_MM3_PER_KG_PER_M3
         self.drag_model = model
+        # cage pocket that holds a skewed roller (sim.physics.friction, "Roller skew"): clearance c and
+        # stiffness k of the pocket at each roller end give the skew at contact atan(c / Lwe) and the
+        # couple per skew beyond it, k Lwe^2 / 2 (two end contacts at +-Lwe/2, each k (Lwe/2) dpsi)
+        skew = friction["skew"]
+        skew_on = bool(skew["enabled"])
+        skew_clearance = float(np.arctan(float(skew["pocket_clearance"]) / g.Lwe))
+        skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
         # the per-case fields (eta0, Z, beta, drag_k: oil temperature) are set by evaluate
         self.par = FrictionParams(
             eta0=np.nan, alpha=float(lubricant.pressure_viscosity), Z=np.nan,
@@ -107,25 +124,15 @@ class FrictionModel:
             sigma=sigma, B_ZH=B_ZH, C_ZH=C_ZH, sigma_rib=sigma_rib, B_ZH_rib=B_ZH_rib, C_ZH_rib=C_ZH_rib,
             film=FILM_FORMULAS[film], drag_k=np.nan, thermal=thermal, k_oil=float(lubricant.thermal_conductivity),
             k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol,
-            inlet_heating=bool(friction["inlet_shear_heating"]), boundary_only=False)
+            inlet_heating=bool(friction["inlet_shear_heating"]), boundary_only=False, skew=skew_on,
+            skew_clearance=skew_clearance, skew_stiffness=skew_stiffness)
         self.quad = width_quadrature(friction["width_points"])
 
-    def evaluate(self, op, raw, start=None):
-        """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
-
-        ``start``: the ``kinematics`` entry of a previous evaluation of the same case (cage and
-        roller speeds [rad/s], the kinematic Jacobian); the film is then taken at those speeds
-        and one Newton solve follows, starting with that Jacobian, instead of starting from
-        rolling kinematics.
-
-        Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
-        cage speed rpm), ``friction_converged``, the cage pocket ``roller_loads`` (Z, 3) [N]
-        and ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s],
-        :data:`sim.solvers.kinematics.KinematicJacobian`).
-
-        At ``op.speed_rpm == 0`` the torque is the zero-speed breakaway torque (BREAKAWAY_NOMINAL_SPEED):
-        boundary friction along the slip directions at the onset of motion, power loss 0, cage
-        and roller speeds 0, no film; ``start`` is not used.
+    def problem(self, op, raw, start=None):
+        """The kinematic problem of one solved case (raw: BearingModel.solve output), as
+        :meth:`evaluate` hands it to :func:`sim.solvers.kinematics.solve_friction`: a
+        :data:`FrictionProblem` whose arrays are the solve's start values (``start`` as in
+        :meth:`evaluate`) and whose ``case.film`` the solve writes.
         """
         g = self.geometry
         a = g.arrays
@@ -141,15 +148,15 @@ class FrictionModel:
         if static:   # no film, Coulomb friction wherever a contact slips; no drag (it goes as the speed squared)
             par = par._replace(v_s=BREAKAWAY_SLIP_RESOLUTION * wi * 0.5 * g.Dpw, drag_k=0.0, boundary_only=True)
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
-        X, Cen, Ax = frames.X, frames.Cen, frames.Ax
-        q = raw["line_load"]
-        bearing = ContactLoads(q=q, Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
-                                E_star=float(self.E_star), R_end=float(a["rib"][2]), rho_m=0.5 * g.Dwe)
+        bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
+                                E_star=float(self.E_star), R_end=float(a["rib"][2]), x_end=float(a["rib"][0]),
+                                nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe)
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
+        psi = np.zeros(Z)               # roller skews [rad] (stay 0 without friction.skew)
         jac = empty_jacobian(Z)
         if start is not None and not static:
-            wc, wR, jac = start[0], start[1].copy(), start[2]
+            wc, wR, psi, jac = start[0], start[1].copy(), start[2].copy(), start[3]
         load = raw["Q"].sum(axis=1)
         # the rollers one solution stands for: the classes of the quasi-static solve (sim.solvers.symmetry)
         _, weight, source = symmetry_classes(Z, float(op.Fr), float(np.radians(op.tilt_deg)), raw["roller_loads"])
@@ -159,17 +166,48 @@ class FrictionModel:
         film = FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (self.quad.wq.shape[0],)),
                          *(np.zeros(Z) for _ in range(4)))
         case = FrictionCase(frames, bearing, film, par, self.quad)
-        totals = np.zeros(NEV)
         mu_ref = max(par.mu_s, par.c_tau)
         tol_M = self.tolerance * mu_ref * float(load.max()) * bearing.rho_m
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw      # at the pitch radius
         settings = KinematicsSettings(active, weight, tol_M, tol_T, self.max_iterations, self.traction_kinematics,
                                       self.seed_tolerance_factor)
-        # cage pocket friction on each roller, force along v' (sim.physics.friction.cage_pocket_loads):
-        # the friction load the quasi-static balance takes back (BearingModel.solve(op, roller_loads))
-        roller_loads = np.zeros((Z, 3))
-        wc, converged = solve_friction(wc, wR, wi, start is None or static, case, settings, totals, roller_loads, jac)
+        return FrictionProblem(case, settings, wc, wR, psi, wi, jac, start is None or static, static, weight, source,
+                               load)
+
+    def evaluate(self, op, raw, start=None):
+        """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
+
+        ``start``: the ``kinematics`` entry of a previous evaluation of the same case (cage and
+        roller speeds [rad/s], roller skews [rad], the kinematic Jacobian); the film is then taken at those speeds
+        and one Newton solve follows, starting with that Jacobian, instead of starting from
+        rolling kinematics.
+
+        Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
+        cage speed rpm; with ``friction.skew`` also ``roller_skew`` (Z,) deg and ``skew_sliding``
+        N mm), ``friction_converged``, the friction ``roller_loads`` (Z, 3) [N, N, N mm] and
+        ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s], psi (Z,) [rad],
+        :data:`sim.solvers.kinematics.KinematicJacobian`).
+
+        At ``op.speed_rpm == 0`` the torque is the zero-speed breakaway torque (BREAKAWAY_NOMINAL_SPEED):
+        boundary friction along the slip directions at the onset of motion, power loss 0, cage
+        and roller speeds 0, no film; ``start`` is not used.
+        """
+        g = self.geometry
+        X, Cen, Ax = raw["frames"].X, raw["frames"].Cen, raw["frames"].Ax
+        q = raw["line_load"]
+        n = g.n_slices
+        pb = self.problem(op, raw, start)
+        case, settings, wR, psi, wi, static, source, load = (pb.case, pb.settings, pb.wR, pb.psi, pb.wi, pb.static,
+                                                              pb.source, pb.load)
+        par, film = case.par, case.film
+        totals = np.zeros(NEV)
+        # cage pocket friction on each roller, force along v', and with skew the lateral raceway
+        # tractions (sim.physics.friction.cage_pocket_loads): the friction loads the quasi-static
+        # balance takes back (BearingModel.solve(op, roller_loads))
+        roller_loads = np.zeros((g.Z, 3))
+        wc, converged = solve_friction(pb.wc, wR, psi, wi, pb.fresh, case, settings, totals, roller_loads, pb.jac)
         wR[:] = wR[source]
+        psi[:] = psi[source]
         roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
         j = int(np.argmax(load))
@@ -186,6 +224,7 @@ class FrictionModel:
         lam = np.array([film.h[j, s, kmax[s]] / par.sigma for s in range(2)])
         if static:   # power / speed is the same at any speed (Coulomb friction): that of the nominal speed
             components = power / wi
+            skew_sliding = totals[EV_PSKEW] / wi
             power_loss = 0.0
             wc = 0.0
             wR[:] = 0.0
@@ -193,6 +232,7 @@ class FrictionModel:
             # breakdown in proportion to each mechanism's power: sums to the outer-ring torque exactly
             # (which itself equals power / omega_i up to the kinematic tolerance, module docstring)
             components = totals[EV_TOUT] * power / power.sum()
+            skew_sliding = totals[EV_TOUT] * totals[EV_PSKEW] / power.sum()
             power_loss = float(power.sum()) * W_PER_N_MM_PER_S
         return {
             "friction_converged": bool(converged),
@@ -204,6 +244,6 @@ class FrictionModel:
             "lambda_ratio": lam,
             "cage_speed": wc * 30.0 / np.pi,                         # rad/s -> rpm
             "roller_loads": roller_loads,
-            "kinematics": (wc, wR.copy(), jac),
-        }
+            "kinematics": (wc, wR.copy(), psi.copy(), pb.jac),
+        } | ({"roller_skew": np.degrees(psi), "skew_sliding": float(skew_sliding)} if par.skew else {})
 

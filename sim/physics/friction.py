@@ -33,14 +33,57 @@ n (into the ring) and rolling tangent a = n x e_t:
 - cage pocket: the cage supplies the tangential force F_cage that balances the roller along
   e_t; its pocket friction mu_c |F_cage| acts on the spinning roller surface: a moment about
   u' and a force mu_c F_cage sign(omega_R) along v', in the roller's meridian plane. That force
-  is the friction load that enters the quasi-static balance (``roller_loads``); the raceway
-  tractions act along e_t (out of the meridian plane, balanced by the cage) and their spin
-  integrals are even across the width, so they add no meridian-plane force.
+  is the friction load that enters the quasi-static balance (``roller_loads``); without skew the
+  raceway tractions act along e_t (out of the meridian plane, balanced by the cage) and their
+  spin integrals are even across the width, so they add no meridian-plane force (with skew: the
+  lateral tractions, "Roller skew" below).
 - drag (optional): fluid drag on the rollers, F_D = 1/2 rho X C_D Dwe Lwe (omega_c Dpw/2)^2
   (Harris & Kotzalas 2007, drag on rolling elements), reacted by the housing (outer ring).
 
-Unknowns: omega_R,j (roller moment about u' = 0, per roller) and omega_c (cage moment about z
-= 0: sum over rollers of the z-moments the contacts exert). At that equilibrium the torque the
+Roller skew (``par.skew``, config friction.skew; issue 18). The skew psi_j turns roller j
+about its radial axis v' through its centre, u'' = cos(psi) u' + sin(psi) e_t (skew of a roller
+about the axis normal to its raceway contacts: Harris & Kotzalas 2007, Advanced Concepts,
+roller skewing; Kellstroem 1979; Nelias, Bercea & Paleu 2008 for the TRB). Assumptions, first
+order in psi:
+
+- the load distribution stays planar: the slices are displaced along e_t by x psi, along the
+  rings' surfaces of revolution, so their penetrations change only by (x psi)^2 / (2 r), second order;
+  loads, frames and film are those of the meridian-plane solution;
+- kinematics (:func:`lateral_slip_rate`): the slice's contact point turns about the roller axis
+  by beta = b psi and lies at the azimuth phi = f psi = (x psi - y beta) / X_r, where roller and
+  ring normals agree (psi u'.n - beta v'.n = phi n_r, i.e. no normal relative velocity); the
+  slip along the rolling direction is unchanged, and along the generatrix a the slice slips by
+  s_l = -v1 (psi u'.a - beta v'.a - phi a_r) (a skewed cylinder: its surface speed times psi,
+  Harris & Kotzalas). tests/friction/test_skew.py checks it against the 3-D skewed slice;
+- traction: the same law (5.17) on the 2-D slip (s, s_l + y omega_s) per width point, traction
+  -g(|v|) v along the slip (one formula, :func:`_traction`); |v| is then not even in y, so both
+  halves of the width are integrated (twice the traction evaluations of an unskewed roller).
+  This gives F_t, the lateral force F_l along a and the spin moment M_n. The lateral force is a
+  meridian-plane load on the roller (EV_FU, EV_FV, EV_MW: fed back into the load distribution
+  with the cage pocket friction, ``roller_loads``); its power -F_l s_l is ``sliding`` and is
+  reported on its own (EV_PSKEW, output ``skew_sliding``); its moment about u'' (first order in
+  psi) enters the roller's spin balance; it has no z-moment. Lateral slip at the rib, and the
+  heating of the lateral slip in the film temperature, are neglected;
+- moment about the skew axis v' (EV_MS): x F_t of every slice (x = (X - c).u'), M_n (v'.n),
+  the rolling couple's v' component, the rib traction at x_rib, and the normal loads turned with
+  the contact points: -Q psi f (X_r (n_z v_r - n_r v_z) + n_r (d_r v_z - d_z v_r)), each normal
+  lying in the meridian plane of its contact point (for the rib the plane of the roller-end
+  sphere centre, azimuth psi x_end / r_centre: the TRB's end sphere has its centre near the
+  bearing axis, so its rib load turns strongly with the skew and holds the roller: a restoring
+  moment ~ Q_rib x_end^2 n_r / r_centre per radian). Their e_t components join F_t in the force
+  the cage supplies. Gyroscopic skew moments (I_x omega_R omega_c psi, < 1 N mm here) are neglected;
+- the cage pocket closes the balance. Nothing else holds a skewed roller elastically: without
+  the pocket a TSRB roller's friction moment keeps its sign across every skew (tested), so
+  there is no free equilibrium. The pocket is a clearance plus a stiff penalty couple
+  (:func:`pocket_skew_couple`): zero for |psi| <= psi_c = atan(c_p / Lwe) (c_p the pocket's
+  circumferential play, config friction.skew.pocket_clearance), -k (|psi| - psi_c) sign(psi)
+  beyond it, k = k_p Lwe^2 / 2 (two end contacts of stiffness k_p at +-Lwe/2). If the friction
+  moment vanishes inside the clearance the roller sits there (a free skew equilibrium: the TRBs,
+  held by the rib); otherwise it rests on the pocket at psi_c + M / k.
+
+Unknowns: omega_R,j (roller moment about u' = 0, per roller), with skew psi_j (moment about
+v' = 0, per roller), and omega_c (cage moment about z = 0: sum over rollers of the z-moments the
+contacts exert). At that equilibrium the torque the
 rollers and the oil exert on the outer ring equals power loss / omega_i exactly (energy
 balance); the kernels compute both independently so the identity checks the solution.
 """
@@ -66,7 +109,14 @@ NC = len(COMPONENTS)
 EV_MU, EV_TZ, EV_TOUT, EV_FT = 0, 1, 2, 3
 EV_P0 = 4
 (EV_ROLLING, EV_HYSTERESIS, EV_SLIDING, EV_DRILLING, EV_RIB, EV_CAGE, EV_DRAG) = range(EV_P0, EV_P0 + NC)
-NEV = EV_P0 + NC
+# then, for roller skew (module docstring, "Roller skew"): the friction moment about the skew axis v'
+# [N mm]; the lateral tractions as meridian-plane loads on the roller (along u', along v' [N], moment
+# about u' x v' [N mm], the layout of the quasi-static roller_loads); the power of the lateral
+# traction on the lateral slip of the skewed roller [N mm/s], a part of EV_SLIDING.
+EV_MS = EV_P0 + NC
+EV_FU, EV_FV, EV_MW = EV_MS + 1, EV_MS + 2, EV_MS + 3
+EV_PSKEW = EV_MS + 4
+NEV = EV_PSKEW + 1
 
 # Friction parameters of one case (numba-supported named tuple; built by
 # sim.api.friction_model.FrictionModel from the config, the per-case fields with ``_replace``).
@@ -101,6 +151,9 @@ FrictionParams = namedtuple("FrictionParams", [
     "inlet_heating",  # bool, inlet shear heating thins the film and the rolling loss (Gupta et al. 1992)
     "boundary_only",  # bool, no film: every contact in boundary friction, no rolling loss (the breakaway
                       # torque at load.speed = 0, sim.api.friction_model)
+    "skew",           # bool, roller skew is an unknown of the kinematics (module docstring, "Roller skew")
+    "skew_clearance", # rad, skew at which a centred roller touches its cage pocket, atan(c_p / Lwe)
+    "skew_stiffness", # N mm/rad, couple per skew angle of the pocket beyond the clearance
 ])
 
 # Film traction laws (config friction.traction_law): the Maxwell-Eyring film limited by tau_L
@@ -137,6 +190,8 @@ ContactLoads = namedtuple("ContactLoads", [
     "w",            # slice width [mm]
     "E_star",       # contact modulus [MPa]
     "R_end",        # roller-end sphere radius [mm] (TRB; geometry arrays ``rib[2]``)
+    "x_end",        # roller-end sphere centre along u' from the roller centre [mm] (TRB; ``rib[0]``)
+    "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
 ])
 
@@ -423,14 +478,55 @@ def lubrication_state(wR, wc, wi, active, case):
 
 
 @kernel
-def roller_friction(j, wR, wc, wi, case, ev):
-    """Friction of roller j at roller speed wR and cage speed wc [rad/s], inner-ring speed wi
-    [rad/s], film and frames of ``case`` (:data:`FrictionCase`): fills ``ev`` (NEV,).
+def lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz):
+    """Lateral slip per skew angle of a slice contact, d(v.a)/dpsi [mm/s per rad] (module
+    docstring, "Roller skew"), and the azimuth of the contact point per skew angle f = dphi/dpsi [1].
+
+    v1: roller surface speed along e_t at the contact [mm/s]; Xr: radius of the contact point;
+    (dr, dz): contact point from the roller centre; (nr, nz): normal into the ring; (ur, uz),
+    (vr, vz): roller axes u', v' [mm, 1]. The skewed roller touches the ring where the two normals
+    agree; to first order in psi the contact point turns by beta = b psi about the roller axis and
+    lies at the azimuth phi = f psi = (x psi - y beta) / Xr, where both normals have the same e_t
+    component: psi u'.n - beta v'.n = phi n_r (equivalently, the relative velocity has no normal
+    component). The roller velocity there, -v1 (-e_t + psi u' - beta v'), seen in the ring frame
+    at that azimuth (the ring's own velocity is along e_t there), has the component along the
+    generatrix a = (-n_z, n_r): -v1 (psi u'.a - beta v'.a - phi a_r).
+    """
+    x = ur * dr + uz * dz
+    y = vr * dr + vz * dz
+    ar = -nz
+    az = nr
+    b = (nr * x / Xr - (ur * nr + uz * nz)) / (nr * y / Xr - (vr * nr + vz * nz))
+    f = (x - y * b) / Xr
+    return -v1 * ((ur * ar + uz * az) - b * (vr * ar + vz * az) - f * ar), f
+
+
+@kernel
+def pocket_skew_couple(psi, par):
+    """Couple of the cage pocket about the skew axis on a roller skewed by psi [rad]: (couple
+    [N mm], d couple / d psi [N mm/rad]). Zero inside the clearance |psi| <= par.skew_clearance,
+    beyond it a stiff linear penalty -par.skew_stiffness (psi -+ clearance) (module docstring)."""
+    c = par.skew_clearance
+    k = par.skew_stiffness
+    if psi > c:
+        return -k * (psi - c), -k
+    if psi < -c:
+        return -k * (psi + c), -k
+    return 0.0, 0.0
+
+
+@kernel
+def roller_friction(j, wR, psi, wc, wi, case, ev):
+    """Friction of roller j at roller speed wR [rad/s], skew psi [rad] and cage speed wc [rad/s],
+    inner-ring speed wi [rad/s], film and frames of ``case`` (:data:`FrictionCase`): fills ``ev`` (NEV,).
 
     ev: moment about the roller axis [N mm], z-moment of the contacts on the roller [N mm],
     z-moment on the outer ring [N mm], tangential contact force [N], then the powers [N mm/s]
-    of COMPONENTS. Per slice (module docstring) the width integral gives the tangential force
-    F_t and the spin moment M_n; -F_t s is split into sliding and drilling per contact.
+    of COMPONENTS, then the friction moment about the skew axis (without the pocket couple,
+    :func:`pocket_skew_couple`) [N mm], the lateral-traction loads (u', v' [N], u' x v' [N mm])
+    and the lateral-slip power [N mm/s] (EV_MS ... EV_PSKEW). Per slice (module docstring) the
+    width integral gives the tangential force F_t, the lateral force F_l (psi != 0) and the spin
+    moment M_n; -F_t s is split into sliding and drilling per contact, -F_l s_l is sliding.
 
     The slice loop is written out here rather than called per slice: a kernel taking the
     FrictionCase per slice is not inlined by LLVM, and passing the bundle by value for every
@@ -439,7 +535,7 @@ def roller_friction(j, wR, wc, wi, case, ev):
     X, Nrm, Cen, Ax, Xrib = case.frames
     film, par = case.film, case.par
     p0, b, h, Phi, Fh, Fy, Eta = film.p0, film.b, film.h, film.Phi, film.Fh, film.Fy, film.Eta
-    Qrib, R_eq, w = case.bearing.Qrib, case.bearing.R_eq, case.bearing.w
+    q, Qrib, R_eq, w = case.bearing.q, case.bearing.Qrib, case.bearing.R_eq, case.bearing.w
     cos_t, sin_t, wq = case.quad
     for i in range(NEV):
         ev[i] = 0.0
@@ -447,6 +543,8 @@ def roller_friction(j, wR, wc, wi, case, ev):
     cz = Cen[j, 1]
     ur = Ax[j, 0]
     uz = Ax[j, 1]
+    vr = Ax[j, 2]
+    vz = Ax[j, 3]
     n = p0.shape[2]
     for s in range(2):
         Om = -wc if s == 0 else wi - wc
@@ -474,24 +572,61 @@ def roller_friction(j, wR, wc, wi, case, ev):
             az = nr
             wroll = wR * (ur * ar + uz * az) - Om * az           # relative rolling about a
             t_transit = 2.0 * bk / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)   # [s]
-            # width integral, y = b sin(t), t in (0, pi/2), both halves (|v| is even in y)
-            Ft = 0.0
-            Mn = 0.0
-            for i in range(wq.shape[0]):
-                ct = cos_t[i]
-                y = bk * sin_t[i]
-                p = p0k * ct
-                vy = y * ws
-                v = np.sqrt(st * st + vy * vy)
-                g = _traction(par, p, v, hk, phik, eta[i], t_transit)
-                dA = 2.0 * w * bk * ct * wq[i]
-                Ft -= g * st * dA
-                Mn -= g * y * vy * dA
-            Mrr = frr * R_eq[s, k]
-            sg = 1.0 if wroll > 0.0 else -1.0
             dr = Xr - cr
             dz = Xz - cz
+            Ft = 0.0
+            Mn = 0.0
+            if psi == 0.0:
+                # width integral, y = b sin(t), t in (0, pi/2), both halves (|v| is even in y)
+                for i in range(wq.shape[0]):
+                    ct = cos_t[i]
+                    y = bk * sin_t[i]
+                    p = p0k * ct
+                    vy = y * ws
+                    v = np.sqrt(st * st + vy * vy)
+                    g = _traction(par, p, v, hk, phik, eta[i], t_transit)
+                    dA = 2.0 * w * bk * ct * wq[i]
+                    Ft -= g * st * dA
+                    Mn -= g * y * vy * dA
+            else:
+                # skewed roller: slip (s, s_l + y omega_s) along (e_t, a), |v| no longer even in y:
+                # each half of the width on its own; traction -g(|v|) v along the slip direction
+                rate, f = lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz)
+                sl = psi * rate
+                Fl = 0.0
+                for i in range(wq.shape[0]):
+                    ct = cos_t[i]
+                    p = p0k * ct
+                    dA = w * bk * ct * wq[i]
+                    for half in range(2):
+                        y = bk * sin_t[i] if half == 0 else -bk * sin_t[i]
+                        vy = sl + y * ws
+                        v = np.sqrt(st * st + vy * vy)
+                        g = _traction(par, p, v, hk, phik, eta[i], t_transit)
+                        Ft -= g * st * dA
+                        Fl -= g * vy * dA
+                        Mn -= g * y * vy * dA
+                # lateral force F_l a: meridian-plane load on the roller; its moment about the
+                # skewed axis u' + psi e_t at the turned contact point (first order in psi);
+                # no z-moment (a lies in the meridian plane of the contact point)
+                ua = ur * ar + uz * az
+                va = vr * ar + vz * az
+                ev[EV_FU] += Fl * ua
+                ev[EV_FV] += Fl * va
+                ev[EV_MW] += Fl * (dr * az - dz * ar)
+                ev[EV_MU] += Fl * psi * ((dz * ar - dr * az) + f * Xr * (az * ur - ar * uz) + f * ar * (dr * uz - dz * ur))
+                ev[EV_PSKEW] -= Fl * sl
+                ev[EV_SLIDING] -= Fl * sl
+                # the normal load -Q n acts at the azimuth phi = f psi along the turned normal:
+                # its moment about the skew axis v' (geometric, first order in psi)
+                Qk = w * q[j, s, k]
+                ev[EV_MS] -= Qk * psi * f * (Xr * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
+                ev[EV_FT] -= Qk * psi * f * nr
+            Mrr = frr * R_eq[s, k]
+            sg = 1.0 if wroll > 0.0 else -1.0
             ev[EV_MU] += Ft * (uz * dr - ur * dz) + Mn * (ur * nr + uz * nz) - sg * Mrr * (ur * ar + uz * az)
+            # moment about the skew axis v': F_t at x = (X - c).u', spin and rolling couples along v'
+            ev[EV_MS] += Ft * (ur * dr + uz * dz) + Mn * (vr * nr + vz * nz) - sg * Mrr * (vr * ar + vz * az)
             tz = Ft * Xr + Mn * nz - sg * Mrr * az               # z-moment on the roller
             ev[EV_TZ] += tz
             if s == 0:
@@ -519,10 +654,21 @@ def roller_friction(j, wR, wc, wi, case, ev):
         t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)
         g = _traction(par, prib, abs(st), film.hrib[j], film.Phirib[j], film.Etarib[j], t_transit)
         F = -g * st * Qrib[j] / prib
-        ev[EV_MU] += F * (uz * (Xrib[j, 0] - cr) - ur * (Xrib[j, 1] - cz))
+        dr = Xrib[j, 0] - cr
+        dz = Xrib[j, 1] - cz
+        ev[EV_MU] += F * (uz * dr - ur * dz)
+        ev[EV_MS] += F * (ur * dr + uz * dz)
         ev[EV_TZ] += F * Xrib[j, 0]
         ev[EV_FT] += F
         ev[EV_RIB] -= F * st
+        if psi != 0.0:
+            # the rib load -Q_rib n along the normal through the end-sphere centre, whose azimuth is
+            # phi = psi x_end / r_centre: its moment about v' (as the slices' normal loads)
+            nr = case.bearing.nrib[j, 0]
+            nz = case.bearing.nrib[j, 1]
+            phi = psi * case.bearing.x_end / (Xrib[j, 0] - case.bearing.R_end * nr)
+            ev[EV_MS] -= Qrib[j] * phi * (Xrib[j, 0] * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
+            ev[EV_FT] -= Qrib[j] * phi * nr
     # drag on the roller (reacted by the housing = outer ring) and the cage pocket force
     FD = par.drag_k * wc * wc
     rc = cr
@@ -536,12 +682,13 @@ def roller_friction(j, wR, wc, wi, case, ev):
 
 
 @kernel
-def cage_pocket_loads(wR, wc, wi, active, case, loads):
-    """Cage pocket friction force on every active roller [N] (module docstring): the force
-    mu_c F_cage sign(omega_R) along v' (``loads[j, 1]``), F_cage = F_D - F_t the tangential force
-    the cage supplies, at roller speeds wR and cage speed wc [rad/s]; the friction load the
-    quasi-static balance takes back (BearingModel.solve(op, roller_loads)). ``loads`` (Z, 3) is
-    written, zero for the inactive rollers and the other components.
+def cage_pocket_loads(wR, psi, wc, wi, active, case, loads):
+    """Friction loads on every active roller in its meridian plane [N, N mm], the layout of the
+    quasi-static roller loads (along u', along v', about u' x v'): the cage pocket friction force
+    mu_c F_cage sign(omega_R) along v' (module docstring), F_cage = F_D - F_t the tangential force
+    the cage supplies, and with skew psi (Z,) [rad] the lateral raceway tractions; at roller
+    speeds wR and cage speed wc [rad/s]. The friction load the quasi-static balance takes back
+    (BearingModel.solve(op, roller_loads)). ``loads`` (Z, 3) is written, zero for the inactive rollers.
     """
     ev = np.empty(NEV)
     par = case.par
@@ -550,6 +697,8 @@ def cage_pocket_loads(wR, wc, wi, active, case, loads):
             loads[j, a] = 0.0
         if not active[j]:
             continue
-        roller_friction(j, wR[j], wc, wi, case, ev)
+        roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
         F_cage = par.drag_k * wc * wc - ev[EV_FT]
-        loads[j, 1] = par.mu_cage * F_cage * np.sign(wR[j])
+        loads[j, 0] = ev[EV_FU]
+        loads[j, 1] = par.mu_cage * F_cage * np.sign(wR[j]) + ev[EV_FV]
+        loads[j, 2] = ev[EV_MW]

@@ -1,8 +1,10 @@
 """Roller and cage speeds from the traction balance (MODEL.md 5, thesis 5.4): the nonlinear
 solves over the friction kernels of :mod:`sim.physics.friction`.
 
-Unknowns: omega_R,j (roller moment about its axis u' = 0, per roller) and omega_c (cage
-moment about z = 0: sum over rollers of the z-moments the contacts exert).
+Unknowns: omega_R,j (roller moment about its axis u' = 0, per roller), with friction.skew the
+skew psi_j (moment about the roller's radial axis v' of friction and cage pocket = 0, per roller,
+sim.physics.friction "Roller skew") and omega_c (cage moment about z = 0: sum over rollers of
+the z-moments the contacts exert).
 :func:`solve_kinematics_newton` takes Newton steps on all of them at once (roller rows
 eliminated); :func:`solve_kinematics` brackets the cage speed, each roller at its own balance
 (slower, but it cannot leave the bracket).
@@ -13,23 +15,31 @@ import numpy as np
 
 from sim._math.jit import kernel
 from sim._math.roots import root_search, root_search_step
-from sim.physics.friction import EV_MU, EV_TZ, NEV, cage_pocket_loads, lubrication_state, roller_friction
+from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, cage_pocket_loads, lubrication_state, pocket_skew_couple,
+                                  roller_friction)
 
-# The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), cage z-moments
-# per roller T (Z,)) with respect to the roller speeds (diagonal) and the cage speed (column), by
-# forward differences: kept between Newton iterations and film passes (chord steps).
+# The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
+# friction moments about the skew axis S (Z,), cage z-moments per roller T (Z,)) with respect to
+# the roller speeds and skews (diagonal blocks) and the cage speed (column), by forward
+# differences: kept between Newton iterations and film passes (chord steps). The skew entries
+# hold the friction part only; the pocket couple's slope is added where the step is solved.
 KinematicJacobian = namedtuple("KinematicJacobian", [
     "dMdw",         # (Z,) dM_j/d omega_R,j [N mm s]
     "dTdw",         # (Z,) dT_j/d omega_R,j [N mm s]
     "dMdc",         # (Z,) dM_j/d omega_c [N mm s]
     "dTdc",         # (Z,) dT_j/d omega_c [N mm s]
+    "dMdp",         # (Z,) dM_j/d psi_j [N mm]   (skew only, below)
+    "dSdw",         # (Z,) dS_j/d omega_R,j [N mm s]
+    "dSdp",         # (Z,) dS_j/d psi_j [N mm], friction part
+    "dSdc",         # (Z,) dS_j/d omega_c [N mm s]
+    "dTdp",         # (Z,) dT_j/d psi_j [N mm]
     "known",        # (1,) bool: the arrays hold a Jacobian (of some earlier iterate)
 ])
 
 
 def empty_jacobian(Z):
     """A :data:`KinematicJacobian` for Z rollers that holds no Jacobian yet."""
-    return KinematicJacobian(np.zeros(Z), np.zeros(Z), np.zeros(Z), np.zeros(Z), np.zeros(1, dtype=np.bool_))
+    return KinematicJacobian(*(np.zeros(Z) for _ in range(9)), np.zeros(1, dtype=np.bool_))
 
 
 # How the kinematics are solved (numba-supported named tuple, built by sim.api.friction_model):
@@ -79,17 +89,18 @@ MAX_HALVINGS = 30
 
 
 @kernel
-def _solve_roller_speed(j, w0, wc, wi, case, ev, tol_M, max_iter):
-    """omega_R of roller j with zero moment about its axis (bracketed root, sim._math.roots).
+def _solve_roller_speed(j, w0, psi, wc, wi, case, ev, tol_M, max_iter):
+    """omega_R of roller j at skew psi with zero moment about its axis (bracketed root,
+    sim._math.roots).
 
     Returns (omega_R [rad/s], converged); w0 when no bracket is found. M(omega_R) falls with
     omega_R: more spin, more drag.
     """
     lo = ROLLER_BRACKET[0] * w0
-    roller_friction(j, lo, wc, wi, case, ev)
+    roller_friction(j, lo, psi, wc, wi, case, ev)
     search = root_search(lo, ev[EV_MU], ROLLER_BRACKET[1] * w0, tol_M, 0.0, max_iter)
     while not search.done:
-        roller_friction(j, search.x, wc, wi, case, ev)
+        roller_friction(j, search.x, psi, wc, wi, case, ev)
         search = root_search_step(search, ev[EV_MU])
     if not search.bracketed:
         return w0, False
@@ -97,11 +108,56 @@ def _solve_roller_speed(j, w0, wc, wi, case, ev, tol_M, max_iter):
 
 
 @kernel
-def _cage_moment(wc, wi, wR, case, settings, ev, totals):
+def _skew_moment(ev, psi, par):
+    """Moment about the skew axis of roller friction (ev[EV_MS]) and cage pocket [N mm]."""
+    return ev[EV_MS] + pocket_skew_couple(psi, par)[0]
+
+
+@kernel
+def _solve_roller_skew(j, wR, p0, wc, wi, case, ev, tol_M, max_iter):
+    """Skew psi of roller j at speed wR with zero moment about its skew axis (bracketed root;
+    the pocket couple makes the moment fall through zero beyond the clearance whatever the
+    friction does). First bracket p0 +- the pocket clearance. Returns (psi [rad], converged); p0
+    when no bracket is found.
+    """
+    par = case.par
+    lo = p0 - par.skew_clearance
+    roller_friction(j, wR, lo, wc, wi, case, ev)
+    search = root_search(lo, _skew_moment(ev, lo, par), p0 + par.skew_clearance, tol_M, 0.0, max_iter)
+    while not search.done:
+        roller_friction(j, wR, search.x, wc, wi, case, ev)
+        search = root_search_step(search, _skew_moment(ev, search.x, par))
+    if not search.bracketed:
+        return p0, False
+    return search.x, search.converged
+
+
+@kernel
+def _solve_roller(j, w0, p0, wc, wi, case, ev, tol_M, max_iter):
+    """Speed and skew of roller j at cage speed wc with zero moments about its axis and its skew
+    axis: the speed alone without skew, else alternately speed (at the skew) and skew (at the
+    speed), until both moments are within tol_M (block Gauss-Seidel, at most max_iter sweeps).
+    Returns (omega_R [rad/s], psi [rad], converged).
+    """
+    w, conv = _solve_roller_speed(j, w0, p0, wc, wi, case, ev, tol_M, max_iter)
+    if not case.par.skew:
+        return w, p0, conv
+    psi = p0
+    for _ in range(max_iter):
+        psi, conv_p = _solve_roller_skew(j, w, psi, wc, wi, case, ev, tol_M, max_iter)
+        roller_friction(j, w, psi, wc, wi, case, ev)
+        if abs(ev[EV_MU]) <= tol_M and conv_p:
+            return w, psi, True
+        w, conv = _solve_roller_speed(j, w, psi, wc, wi, case, ev, tol_M, max_iter)
+    return w, psi, False
+
+
+@kernel
+def _cage_moment(wc, wi, wR, psi, case, settings, ev, totals):
     """Sum of the z-moments on all rollers at cage speed wc, each roller at its own moment balance.
 
-    wR (Z,) holds start values in and solved speeds out; ``totals`` (NEV,) gets the weighted
-    sums of the roller evaluation vectors. Returns (moment [N mm], all rollers converged).
+    wR, psi (Z,) hold start values in and solved speeds and skews out; ``totals`` (NEV,) gets the
+    weighted sums of the roller evaluation vectors. Returns (moment [N mm], all rollers converged).
     """
     ok = True
     for i in range(NEV):
@@ -109,18 +165,19 @@ def _cage_moment(wc, wi, wR, case, settings, ev, totals):
     for j in range(wR.shape[0]):
         if not settings.active[j]:
             continue
-        wj, conv = _solve_roller_speed(j, wR[j], wc, wi, case, ev, settings.tol_M, settings.max_iter)
+        wj, pj, conv = _solve_roller(j, wR[j], psi[j], wc, wi, case, ev, settings.tol_M, settings.max_iter)
         ok = ok and conv
         wR[j] = wj
-        roller_friction(j, wj, wc, wi, case, ev)
+        psi[j] = pj
+        roller_friction(j, wj, pj, wc, wi, case, ev)
         for i in range(NEV):
             totals[i] += settings.weight[j] * ev[i]
     return totals[EV_TZ], ok
 
 
 @kernel
-def solve_kinematics(wc0, wi, wR, case, settings, totals):
-    """Cage speed with zero z-moment on the cage and roller speeds with zero spin moment.
+def solve_kinematics(wc0, wi, wR, psi, case, settings, totals):
+    """Cage speed with zero z-moment on the cage and roller speeds (and skews) with zero moments.
 
     Parameters
     ----------
@@ -130,6 +187,8 @@ def solve_kinematics(wc0, wi, wR, case, settings, totals):
         Inner-ring speed [rad/s].
     wR : ndarray (Z,)
         Roller speeds [rad/s]: start values in, solution out.
+    psi : ndarray (Z,)
+        Roller skews [rad]: start values in, solution out (kept as they are without skew).
     case : sim.physics.friction.FrictionCase
         Frames, bearing arrays, film state, parameters and width quadrature.
     settings : KinematicsSettings
@@ -143,10 +202,10 @@ def solve_kinematics(wc0, wi, wR, case, settings, totals):
     """
     ev = np.empty(NEV)
     lo = CAGE_BRACKET[0] * wc0
-    flo, ok = _cage_moment(lo, wi, wR, case, settings, ev, totals)
+    flo, ok = _cage_moment(lo, wi, wR, psi, case, settings, ev, totals)
     search = root_search(lo, flo, CAGE_BRACKET[1] * wc0, settings.tol_T, 0.0, settings.max_iter)
     while not search.done:
-        fx, ok = _cage_moment(search.x, wi, wR, case, settings, ev, totals)
+        fx, ok = _cage_moment(search.x, wi, wR, psi, case, settings, ev, totals)
         search = root_search_step(search, fx)
     if not search.bracketed:
         return wc0, False
@@ -154,51 +213,82 @@ def solve_kinematics(wc0, wi, wR, case, settings, totals):
 
 
 @kernel
-def _kinematic_residuals(wc, wi, wR, case, settings, ev, M, T, totals):
-    """Roller spin moments M (Z,) and cage z-moments per roller T (Z,) [N mm] at (wR, wc); sums into totals."""
+def _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals):
+    """Roller spin moments M (Z,), friction moments about the skew axes S (Z,) (without the pocket
+    couple; 0 without skew) and cage z-moments per roller T (Z,) [N mm] at (wR, psi, wc); sums
+    into totals."""
     for i in range(NEV):
         totals[i] = 0.0
     for j in range(wR.shape[0]):
         M[j] = 0.0
+        S[j] = 0.0
         T[j] = 0.0
         if not settings.active[j]:
             continue
-        roller_friction(j, wR[j], wc, wi, case, ev)
+        roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
         M[j] = ev[EV_MU]
+        if case.par.skew:
+            S[j] = ev[EV_MS]
         T[j] = settings.weight[j] * ev[EV_TZ]
         for i in range(NEV):
             totals[i] += settings.weight[j] * ev[i]
 
 
 @kernel
-def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals, jac):
-    """Newton on all roller speeds and the cage speed together (arrow-shaped Jacobian).
+def _scaled_norm(T, M, S, psi, settings, par):
+    """Squared norm and largest entry of the residuals scaled by their tolerances (the skew
+    residuals with the pocket couple)."""
+    norm = (T.sum() / settings.tol_T) ** 2
+    worst = abs(T.sum()) / settings.tol_T
+    for j in range(M.shape[0]):
+        norm += (M[j] / settings.tol_M) ** 2
+        worst = max(worst, abs(M[j]) / settings.tol_M)
+        if par.skew and settings.active[j]:
+            r = (S[j] + pocket_skew_couple(psi[j], par)[0]) / settings.tol_M
+            norm += r * r
+            worst = max(worst, abs(r))
+    return norm, worst
 
-    Roller j's spin moment depends on its own speed and the cage speed only, so the Jacobian
-    is a diagonal block plus one row and column; it is built by forward differences (relative
-    step FD_STEP) and eliminated in O(Z). Backtracking on the scaled residual norm keeps the
-    iteration monotone. A Jacobian already in ``jac`` (an earlier iterate's, or the previous
-    film pass's) is tried first: its full step is kept if it cuts the squared norm to
-    CHORD_CONTRACTION times its value, else the Jacobian is rebuilt at the current point. Same
-    arguments and return value as :func:`solve_kinematics`, and ``jac``
-    (:data:`KinematicJacobian`, read and written); wR and wc are start values (rolling
-    kinematics or a previous solution). ``presolve``: for a start far away, such as rolling
-    kinematics of a crowned roller, first bring the most loaded active roller to its own moment
-    balance at the start cage speed and start every active roller from its speed (measured: the
-    balanced roller speeds of a case differ by < 0.1 % from roller to roller while rolling
-    kinematics are 2-7 % off for the crowned TSRBs; one bracketed solve instead of one per
-    roller, the Newton iteration does the rest).
+
+@kernel
+def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, jac):
+    """Newton on all roller speeds (and skews) and the cage speed together (arrow-shaped Jacobian).
+
+    Roller j's moments depend on its own speed (and skew) and the cage speed only, so the
+    Jacobian is a diagonal of 1x1 (2x2 with skew) blocks plus one row and column; it is built by
+    forward differences (relative step FD_STEP; for the skew FD_STEP times the larger of |psi|
+    and the pocket clearance) and eliminated in O(Z); the pocket couple's slope is exact.
+    Backtracking on the scaled residual norm keeps the iteration monotone. A Jacobian already
+    in ``jac`` (an earlier iterate's, or the previous film pass's) is tried first: its full
+    step is kept if it cuts the squared norm to CHORD_CONTRACTION times its value, else the
+    Jacobian is rebuilt at the current point. Same arguments and return value as
+    :func:`solve_kinematics`, and ``jac`` (:data:`KinematicJacobian`, read and written); wR, psi
+    and wc are start values (rolling kinematics and no skew, or a previous solution).
+    ``presolve``: for a start far away, such as rolling kinematics of a crowned roller, first
+    bring the most loaded active roller to its own moment balance at the start cage speed and
+    start every active roller from its speed (measured: the balanced roller speeds of a case
+    differ by < 0.1 % from roller to roller while rolling kinematics are 2-7 % off for the
+    crowned TSRBs; one bracketed solve instead of one per roller, the Newton iteration does the
+    rest); with skew, that roller's skew at its speed (bracketed), the start of every roller's.
     """
     active, weight, tol_M, tol_T = settings.active, settings.weight, settings.tol_M, settings.tol_T
-    dMdw, dTdw, dMdc, dTdc, known = jac
+    dMdw, dTdw, dMdc, dTdc, dMdp, dSdw, dSdp, dSdc, dTdp, known = jac
+    par = case.par
+    skew = par.skew
     Z = wR.shape[0]
     ev = np.empty(NEV)
     M = np.zeros(Z)
+    S = np.zeros(Z)
     T = np.zeros(Z)
     M2 = np.zeros(Z)
+    S2 = np.zeros(Z)
     T2 = np.zeros(Z)
     dw = np.zeros(Z)
+    dp = np.zeros(Z)
+    St = np.zeros(Z)
+    Dt = np.zeros(Z)
     wtrial = np.zeros(Z)
+    ptrial = np.zeros(Z)
     tmp = np.zeros(NEV)
     # start: the most loaded roller at its own moment balance for the start cage speed (1-D,
     # bracketed), the others at its speed
@@ -212,44 +302,78 @@ def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals, jac):
                 jmax = j
                 qmax = q[j].sum()
         if jmax >= 0:
-            w_star = _solve_roller_speed(jmax, wR[jmax], wc, wi, case, ev, tol_M, settings.max_iter)[0]
+            w_star = _solve_roller_speed(jmax, wR[jmax], psi[jmax], wc, wi, case, ev, tol_M, settings.max_iter)[0]
+            p_star = psi[jmax]
+            if skew:
+                p_star = _solve_roller_skew(jmax, w_star, p_star, wc, wi, case, ev, tol_M, settings.max_iter)[0]
             for j in range(Z):
                 if active[j]:
                     wR[j] = w_star
-    _kinematic_residuals(wc, wi, wR, case, settings, ev, M, T, totals)
+                    psi[j] = p_star
+    _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals)
     for _ in range(settings.max_iter):
-        norm = (T.sum() / tol_T) ** 2
-        worst = abs(T.sum()) / tol_T
-        for j in range(Z):
-            norm += (M[j] / tol_M) ** 2
-            worst = max(worst, abs(M[j]) / tol_M)
+        norm, worst = _scaled_norm(T, M, S, psi, settings, par)
         if worst <= 1.0:
             return wc, True
         chord = known[0]
         if not chord:
             # Jacobian by forward differences
             hc = FD_STEP * abs(wc)
-            _kinematic_residuals(wc + hc, wi, wR, case, settings, ev, M2, T2, tmp)
+            _kinematic_residuals(wc + hc, wi, wR, psi, case, settings, ev, M2, S2, T2, tmp)
             for j in range(Z):
                 dMdc[j] = (M2[j] - M[j]) / hc
+                dSdc[j] = (S2[j] - S[j]) / hc
                 dTdc[j] = (T2[j] - T[j]) / hc
-            for j in range(Z):
-                wtrial[j] = wR[j]
             for j in range(Z):
                 if not active[j]:
                     continue
                 hj = FD_STEP * abs(wR[j])
-                wtrial[j] = wR[j] + hj
-                roller_friction(j, wtrial[j], wc, wi, case, ev)
-                wtrial[j] = wR[j]
+                roller_friction(j, wR[j] + hj, psi[j], wc, wi, case, ev)
                 dMdw[j] = (ev[EV_MU] - M[j]) / hj
                 dTdw[j] = (weight[j] * ev[EV_TZ] - T[j]) / hj
+                if skew:
+                    dSdw[j] = (ev[EV_MS] - S[j]) / hj
+                    hp = FD_STEP * max(abs(psi[j]), par.skew_clearance)
+                    roller_friction(j, wR[j], psi[j] + hp, wc, wi, case, ev)
+                    dMdp[j] = (ev[EV_MU] - M[j]) / hp
+                    dSdp[j] = (ev[EV_MS] - S[j]) / hp
+                    dTdp[j] = (weight[j] * ev[EV_TZ] - T[j]) / hp
             known[0] = True
-        # eliminate the roller rows: dw_j = -(M_j + dMdc_j dc) / dMdw_j
+        # skew rows: the total moment St (friction and pocket) and its slope Dt. A slope that does
+        # not restore (Dt >= 0: inside the clearance, where the friction moment may grow with the
+        # skew) has no equilibrium there; Newton would send the roller the wrong way, and a step
+        # across the clearance does not lower the residual norm on the way (the moment keeps its
+        # size until the roller reaches the pocket). Such a roller is first brought to its own
+        # skew balance at the current speeds (bracketed, to the pocket the moment pushes it to).
+        if skew:
+            moved = False
+            for j in range(Z):
+                Sj, kp = pocket_skew_couple(psi[j], par)
+                St[j] = S[j] + Sj
+                Dt[j] = dSdp[j] + kp
+                if active[j] and Dt[j] >= 0.0 and abs(St[j]) > tol_M:
+                    psi[j] = _solve_roller_skew(j, wR[j], psi[j], wc, wi, case, ev, tol_M, settings.max_iter)[0]
+                    moved = True
+            if moved:
+                _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals)
+                continue
+        # eliminate the roller rows: dx_j = -J_j^-1 (R_j + c_j dc), J_j the roller's block
+        # [[dMdw, dMdp], [dSdw, Dt]], c_j its cage column; without skew J_j = dM_j/dw_j
         num = T.sum()
         den = dTdc.sum()
         for j in range(Z):
-            if active[j] and dMdw[j] != 0.0:
+            if not (active[j] and dMdw[j] != 0.0):
+                continue
+            if skew:
+                det = dMdw[j] * Dt[j] - dMdp[j] * dSdw[j]
+                if det == 0.0:
+                    continue
+                # r_j^T J_j^-1 for the row r_j = (dTdw, dTdp)
+                g1 = (dTdw[j] * Dt[j] - dTdp[j] * dSdw[j]) / det
+                g2 = (dTdp[j] * dMdw[j] - dTdw[j] * dMdp[j]) / det
+                num -= g1 * M[j] + g2 * St[j]
+                den -= g1 * dMdc[j] + g2 * dSdc[j]
+            else:
                 num -= dTdw[j] * M[j] / dMdw[j]
                 den -= dTdw[j] * dMdc[j] / dMdw[j]
         if den == 0.0:
@@ -259,16 +383,27 @@ def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals, jac):
             return wc, False
         dc = -num / den
         for j in range(Z):
-            dw[j] = -(M[j] + dMdc[j] * dc) / dMdw[j] if active[j] and dMdw[j] != 0.0 else 0.0
+            dw[j] = 0.0
+            dp[j] = 0.0
+            if not (active[j] and dMdw[j] != 0.0):
+                continue
+            if skew:
+                r1 = M[j] + dMdc[j] * dc
+                r2 = St[j] + dSdc[j] * dc
+                det = dMdw[j] * Dt[j] - dMdp[j] * dSdw[j]
+                if det != 0.0:
+                    dw[j] = -(Dt[j] * r1 - dMdp[j] * r2) / det
+                    dp[j] = -(dMdw[j] * r2 - dSdw[j] * r1) / det
+            else:
+                dw[j] = -(M[j] + dMdc[j] * dc) / dMdw[j]
         step = 1.0
         accepted = False
         for _ in range(1 if chord else MAX_HALVINGS):
             for j in range(Z):
                 wtrial[j] = wR[j] + step * dw[j]
-            _kinematic_residuals(wc + step * dc, wi, wtrial, case, settings, ev, M2, T2, tmp)
-            trial = (T2.sum() / tol_T) ** 2
-            for j in range(Z):
-                trial += (M2[j] / tol_M) ** 2
+                ptrial[j] = psi[j] + step * dp[j]
+            _kinematic_residuals(wc + step * dc, wi, wtrial, ptrial, case, settings, ev, M2, S2, T2, tmp)
+            trial = _scaled_norm(T2, M2, S2, ptrial, settings, par)[0]
             if trial < (CHORD_CONTRACTION * norm if chord else norm):
                 accepted = True
                 break
@@ -278,8 +413,9 @@ def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals, jac):
                 known[0] = False
                 continue
             return wc, False
-        # block Broyden update of each roller's 2x2 block along the step taken (least change in
-        # the norm of the relative speed changes): the next chord step uses the secant slopes
+        # block Broyden update of each roller's block along the step taken (least change in
+        # the norm of the relative speed changes; the skew relative to the pocket clearance):
+        # the next chord step uses the secant slopes
         for j in range(Z):
             if not active[j]:
                 continue
@@ -288,7 +424,24 @@ def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals, jac):
             a1 = 1.0 / (wR[j] * wR[j])
             a2 = 1.0 / (wc * wc)
             den = a1 * s1 * s1 + a2 * s2 * s2
-            if den > 0.0:
+            if skew:
+                s3 = step * dp[j]
+                a3 = 1.0 / (par.skew_clearance * par.skew_clearance)
+                den += a3 * s3 * s3
+                if den > 0.0:
+                    rM = (M2[j] - M[j]) - (dMdw[j] * s1 + dMdc[j] * s2 + dMdp[j] * s3)
+                    rS = (S2[j] - S[j]) - (dSdw[j] * s1 + dSdc[j] * s2 + dSdp[j] * s3)
+                    rT = (T2[j] - T[j]) - (dTdw[j] * s1 + dTdc[j] * s2 + dTdp[j] * s3)
+                    dMdw[j] += rM * a1 * s1 / den
+                    dMdc[j] += rM * a2 * s2 / den
+                    dMdp[j] += rM * a3 * s3 / den
+                    dSdw[j] += rS * a1 * s1 / den
+                    dSdc[j] += rS * a2 * s2 / den
+                    dSdp[j] += rS * a3 * s3 / den
+                    dTdw[j] += rT * a1 * s1 / den
+                    dTdc[j] += rT * a2 * s2 / den
+                    dTdp[j] += rT * a3 * s3 / den
+            elif den > 0.0:
                 rM = (M2[j] - M[j]) - (dMdw[j] * s1 + dMdc[j] * s2)
                 rT = (T2[j] - T[j]) - (dTdw[j] * s1 + dTdc[j] * s2)
                 dMdw[j] += rM * a1 * s1 / den
@@ -298,16 +451,18 @@ def solve_kinematics_newton(wc, presolve, wi, wR, case, settings, totals, jac):
         wc += step * dc
         for j in range(Z):
             wR[j] = wtrial[j]
+            psi[j] = ptrial[j]
             M[j] = M2[j]
+            S[j] = S2[j]
             T[j] = T2[j]
         for i in range(NEV):
             totals[i] = tmp[i]
     return wc, False
 
 @kernel
-def solve_friction(wc, wR, wi, fresh, case, settings, totals, roller_loads, jac):
-    """Film, roller and cage speeds and cage pocket loads of one solved case, in one kernel call
-    (the orchestration of :meth:`sim.api.friction_model.FrictionModel.evaluate`).
+def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads, jac):
+    """Film, roller and cage speeds, roller skews and friction loads of one solved case, in one
+    kernel call (the orchestration of :meth:`sim.api.friction_model.FrictionModel.evaluate`).
 
     The film (:func:`sim.physics.friction.lubrication_state`) is taken at the speeds of the
     previous pass and fixed while the speeds are solved. ``fresh`` (wR, wc are rolling
@@ -317,7 +472,8 @@ def solve_friction(wc, wR, wi, fresh, case, settings, totals, roller_loads, jac)
     pass from the given speeds (a previous solution). The last pass is solved to
     FINAL_TOLERANCE_FACTOR times the tolerances. A Newton solve that fails is repeated from its
     start by the bracketing :func:`solve_kinematics`. Without ``settings.traction`` the speeds
-    stay as given and ``totals`` sums the weighted roller evaluations.
+    stay as given (with skew, each roller's skew is solved at them) and ``totals`` sums the
+    weighted roller evaluations.
 
     Parameters
     ----------
@@ -325,6 +481,8 @@ def solve_friction(wc, wR, wi, fresh, case, settings, totals, roller_loads, jac)
         Cage speed [rad/s], start value.
     wR : ndarray (Z,)
         Roller speeds [rad/s]: start values in, solution out.
+    psi : ndarray (Z,)
+        Roller skews [rad]: start values in, solution out (zeros stay zeros without ``case.par.skew``).
     wi : float
         Inner-ring speed [rad/s].
     fresh : bool
@@ -335,7 +493,7 @@ def solve_friction(wc, wR, wi, fresh, case, settings, totals, roller_loads, jac)
     totals : ndarray (NEV,)
         Bearing sums of the roller evaluation vectors at the solution (written).
     roller_loads : ndarray (Z, 3)
-        Cage pocket loads (:func:`sim.physics.friction.cage_pocket_loads`, written).
+        Friction loads on the rollers (:func:`sim.physics.friction.cage_pocket_loads`, written).
     jac : KinematicJacobian
         The Newton solves' Jacobian, read and written: :func:`empty_jacobian`, or the one a
         solve of the same case left (its first steps are then chord steps).
@@ -347,6 +505,7 @@ def solve_friction(wc, wR, wi, fresh, case, settings, totals, roller_loads, jac)
     active, weight = settings.active, settings.weight
     passes = 2 if settings.traction and fresh else 1
     converged = True
+    ev = np.empty(NEV)
     for film_pass in range(passes):
         lubrication_state(wR, wc, wi, active, case)
         if settings.traction:
@@ -355,19 +514,24 @@ def solve_friction(wc, wR, wi, fresh, case, settings, totals, roller_loads, jac)
                                                settings.max_iter, True, settings.seed_factor)
             start_c = wc
             start_R = wR.copy()
-            wc, converged = solve_kinematics_newton(wc, film_pass == 0 and fresh, wi, wR, case, pass_settings,
+            start_p = psi.copy()
+            wc, converged = solve_kinematics_newton(wc, film_pass == 0 and fresh, wi, wR, psi, case, pass_settings,
                                                     totals, jac)
             if not converged:   # bracketing is slower but cannot leave the bracket
                 wR[:] = start_R
-                wc, converged = solve_kinematics(start_c, wi, wR, case, pass_settings, totals)
+                psi[:] = start_p
+                wc, converged = solve_kinematics(start_c, wi, wR, psi, case, pass_settings, totals)
     if not settings.traction:
-        ev = np.empty(NEV)
         for i in range(NEV):
             totals[i] = 0.0
         for j in range(wR.shape[0]):
             if active[j]:
-                roller_friction(j, wR[j], wc, wi, case, ev)
+                if case.par.skew:
+                    tol = FINAL_TOLERANCE_FACTOR * settings.tol_M
+                    psi[j], conv = _solve_roller_skew(j, wR[j], psi[j], wc, wi, case, ev, tol, settings.max_iter)
+                    converged = converged and conv
+                roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
                 for i in range(NEV):
                     totals[i] += weight[j] * ev[i]
-    cage_pocket_loads(wR, wc, wi, active, case, roller_loads)
+    cage_pocket_loads(wR, psi, wc, wi, active, case, roller_loads)
     return wc, converged
