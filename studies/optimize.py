@@ -55,6 +55,25 @@ def _reference_failure(search, study):
     return ""
 
 
+def prepared_search(overrides, log):
+    """The design search of the command-line ``overrides`` with its references simulated and its
+    limits set: (search, folders it created). Every input is checked before anything is written;
+    a refusal after that (from the references: their load case named) removes the folders it
+    made, so a refused command leaves nothing behind. Raises one of :data:`STUDY_ERRORS`."""
+    cfg = compose(overrides)
+    new = new_folders(output_dir(cfg.study))
+    try:
+        search = DesignSearch(cfg, overrides, log=log)
+        try:
+            search.run_references()
+        except StudyConfigError as err:
+            raise StudyConfigError(_reference_failure(search, cfg.study) or str(err)) from err
+    except STUDY_ERRORS:
+        remove_if_empty(new)
+        raise
+    return search, new
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m studies.optimize", description=__doc__.split("\n\n")[0],
                                      epilog="Overrides: study=NAME selects conf/study/NAME.yaml; study.KEY=VALUE "
@@ -63,17 +82,11 @@ def main(argv=None):
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     try:
-        cfg = compose(args.overrides)   # every input checked: nothing is written before this passes
+        search, new = prepared_search(args.overrides, lambda msg: print(f"[{time.perf_counter() - t0:6.1f} s] {msg}",
+                                                                        flush=True))
     except STUDY_ERRORS as err:
         return refused(err)
-    new = new_folders(output_dir(cfg.study))
     try:
-        search = DesignSearch(cfg, args.overrides, log=lambda msg: print(f"[{time.perf_counter() - t0:6.1f} s] {msg}",
-                                                                        flush=True))
-        try:
-            search.run_references()
-        except StudyConfigError as err:
-            raise StudyConfigError(_reference_failure(search, cfg.study) or str(err)) from err
         ds, reason = search.run()
     except STUDY_ERRORS as err:
         remove_if_empty(new)

@@ -41,11 +41,10 @@ from matplotlib.figure import Figure
 
 from sim.api import simulate_batch
 from sim.io import write_netcdf_atomic
-from studies.config import PARETO_OBJECTIVES, compose, output_dir, storage_spec
+from studies.config import PARETO_OBJECTIVES, storage_spec
 from studies.constraints import FAILED, margins, rank_key
 from studies.evaluate import RECORDED, design_config, evaluate_design
-from studies.loop import DesignSearch
-from studies.optimize import STUDY_ERRORS, new_folders, refused, remove_if_empty
+from studies.optimize import STUDY_ERRORS, prepared_search, refused
 from studies.report import load_case_label
 from studies.refine import local_refine
 from studies.search import complete_trials, make_sampler, make_storage, open_study, run_trials, trial_margins
@@ -375,15 +374,8 @@ def main(argv=None):
         print(f"[{time.perf_counter() - t0:6.1f} s] {msg}", flush=True)
 
     try:
-        cfg = compose(args.overrides)   # every input checked: nothing is written before this passes
+        search, _ = prepared_search(args.overrides, log)
     except STUDY_ERRORS as err:
-        return refused(err)
-    new = new_folders(output_dir(cfg.study))
-    try:
-        search = DesignSearch(cfg, args.overrides, log=log)
-        search.run_references()
-    except STUDY_ERRORS as err:
-        remove_if_empty(new)
         return refused(err)
     out = search.out / "pareto"
     out.mkdir(parents=True, exist_ok=True)
