@@ -148,12 +148,17 @@ class DesignSearch:
         """The training data on disk (None if none); refuses data of another configuration."""
         if not self.training_path.exists():
             return None
-        ds = table_from_file(xr.load_dataset(self.training_path))
+        return self.own_points(self.training_path, "use another study.name or delete")
+
+    def own_points(self, path, advice):
+        """The per-point table stored at ``path``; refuses one made with another result-defining
+        configuration (``advice``: what to do, followed by the folder to delete)."""
+        ds = table_from_file(xr.load_dataset(path))
         want = self.attrs()
         for key in ("study_config", "simulation_config"):
             if ds.attrs.get(key) != want[key]:
-                raise StudyConfigError(f"{self.training_path} was made with another {key.replace('_', ' ')}; "
-                                       f"use another study.name or delete {self.out} to start afresh")
+                raise StudyConfigError(f"{path} was made with another {key.replace('_', ' ')}; "
+                                       f"{advice} {Path(path).parent} to start afresh")
         return ds
 
     def save_training(self, ds):

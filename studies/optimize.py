@@ -74,6 +74,16 @@ def prepared_search(overrides, log):
     return search, new
 
 
+def elapsed_log():
+    """A progress printer that starts each line with the seconds since it was made."""
+    t0 = time.perf_counter()
+
+    def log(msg):
+        print(f"[{time.perf_counter() - t0:6.1f} s] {msg}", flush=True)
+
+    return log
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m studies.optimize", description=__doc__.split("\n\n")[0],
                                      epilog="Overrides: study=NAME selects conf/study/NAME.yaml; study.KEY=VALUE "
@@ -82,8 +92,7 @@ def main(argv=None):
     args = parser.parse_args(argv)
     t0 = time.perf_counter()
     try:
-        search, new = prepared_search(args.overrides, lambda msg: print(f"[{time.perf_counter() - t0:6.1f} s] {msg}",
-                                                                        flush=True))
+        search, new = prepared_search(args.overrides, elapsed_log())
     except STUDY_ERRORS as err:
         return refused(err)
     try:

@@ -44,7 +44,7 @@ from sim.io import write_netcdf_atomic
 from studies.config import PARETO_OBJECTIVES, storage_spec
 from studies.constraints import FAILED, margins, rank_key
 from studies.evaluate import RECORDED, design_config, evaluate_design
-from studies.optimize import STUDY_ERRORS, prepared_search, refused
+from studies.optimize import STUDY_ERRORS, elapsed_log, prepared_search, refused
 from studies.report import load_case_label
 from studies.refine import local_refine
 from studies.search import complete_trials, make_sampler, make_storage, open_study, run_trials, trial_margins
@@ -368,11 +368,7 @@ def main(argv=None):
     parser.add_argument("overrides", nargs="*", help="Hydra-style overrides, e.g. study=size_32208 study.pareto.trials=200")
     args = parser.parse_args(argv)
     optuna.logging.set_verbosity(optuna.logging.WARNING)
-    t0 = time.perf_counter()
-
-    def log(msg):
-        print(f"[{time.perf_counter() - t0:6.1f} s] {msg}", flush=True)
-
+    log = elapsed_log()
     try:
         search, _ = prepared_search(args.overrides, log)
     except STUDY_ERRORS as err:
