@@ -374,7 +374,7 @@ def main(argv=None):
         print(f"[{time.perf_counter() - t0:6.1f} s] {msg}", flush=True)
 
     try:
-        search, _ = prepared_search(args.overrides, log)
+        search, _ = prepared_search(args.overrides, log, one_case="python -m studies.pareto")
     except STUDY_ERRORS as err:
         return refused(err)
     out = search.out / "pareto"
