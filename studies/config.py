@@ -15,12 +15,12 @@ from omegaconf.errors import OmegaConfBaseException
 
 import sim
 from sim.api import GeometryError, InputError
+from studies.cycle import LOAD_KEYS, DutyCycle
 
 SAMPLERS = ("tpe", "gp", "nsga2")
 DESIGN_PARAMETERS = ("PCR", "kappa", "aP", "aPk", "alpha")
 DESIGN_METHODS = ("sobol", "lhs")
 MATERN_NU = (0.5, 1.5, 2.5, math.inf)
-LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
 PARETO_OBJECTIVES = ("power_loss", "L10", "pmax")   # objectives of studies.pareto
 CASE_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature", "share")   # keys of a study.duty_cycle entry
 # |sum of the time shares - 1| allowed: shares are written with a few digits, and the float sum of m
@@ -122,7 +122,6 @@ def check_simulations(study, overrides=None):
         ``study.duty_cycle[2].Fa = ...``).
     """
     from sim.api.sweep import preflight
-    from studies.cycle import DutyCycle
 
     for k, case in enumerate(DutyCycle.from_config(study).cases):
         for role in dict.fromkeys(("bearing", "reference_trb", "thesis_design")):

@@ -19,7 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from sim.api import ratings
-from studies.config import LOAD_KEYS
+
+LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")   # a load case's quantities (DATA.md case coordinates)
 
 LIFE_EXPONENT = 10.0 / 3.0  # p of L10 = (C / P)^p for roller bearings, ISO 281:2007 eq. (2) / thesis eq. (2.15)
 
