@@ -15,6 +15,13 @@
    ``study.refine``): COBYLA under every constraint, its points stored as source ``refinement``
    (round -1) and outside the loop's budget and rounds.
 
+Duty cycle (``study.duty_cycle``, :mod:`studies.cycle`, issue 16 item 5): every design is
+simulated at every load case (results on ``(design, case)``); the objective is the time-weighted
+mean over the cases, the constraints hold at every case (:mod:`studies.constraints`), and one
+set of constraint surrogates is fitted per case beside one GP of the cycle objective
+(``<output>_case<k>``; benchmarks/bench_duty_layout.py measured this layout against one GP over
+design x case). A one-case study is the one-case cycle, with the names and numbers it had.
+
 Everything lives under the study's folder, so running the same command again resumes where it
 stopped: a round's surrogates are loaded from their folder and its proposal is deterministic
 (seeded by the study seed and the round), so a round killed while simulating proposes the same
@@ -243,7 +250,8 @@ class DesignSearch:
             self.save_training(ds)
             self.log(f"initial design: {ds.sizes['design']} of {len(X)} simulated")
         counts = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
-        self.log(f"initial design: {len(X) - done} {d.method} simulations in {time.perf_counter() - t0:.1f} s {counts}")
+        per = f" designs x {len(self.cycle)} cases" if len(self.cycle) > 1 else ""
+        self.log(f"initial design: {len(X) - done} {d.method}{per} simulations in {time.perf_counter() - t0:.1f} s {counts}")
         return ds
 
     # ------------------------------------------------------------------ judging simulated points

@@ -225,6 +225,25 @@ def case_table(search, best_runs):
     return "\n".join(lines)
 
 
+def resimulation_text(search, ds, i, best_record):
+    """The verified best simulated once more at every case: its objective against the stored one."""
+    stored = float(search.objective_values(ds)[i])
+    again = float(best_record["values"].get(search.objective, np.nan))
+    cases = f" at all {len(search.cycle)} cases" if len(search.cycle) > 1 else ""
+    same = "identical" if again == stored else f"relative difference {again / stored - 1.0:+.2e}"
+    return (f"Re-simulated{cases} for this report: {search.objective} {again:.6g} against {stored:.6g} stored "
+            f"({same}); status {best_record['status']}.")
+
+
+def life_text(search, best_record):
+    """The rating life over the cycle in words: P_eq and L10 of the verified best and of the reference TRB."""
+    trb = search.references["reference TRB"]
+    parts = [f"{label}: P_eq = {_fmt(r['values'].get('P'))} N, L10 = {_fmt(r['values'].get('L10'))} 1e6 rev"
+             for label, r in (("verified best", best_record), (f"reference TRB {trb.bearing}", trb.record))]
+    return ("Rating life over the cycle (equivalent dynamic load P_eq = (sum share n P^p / sum share n)^(1/p), "
+            "p = 10/3, ISO 281 / Harris & Kotzalas 2007; L10 = (least C_eff / P_eq)^p): " + "; ".join(parts) + ".")
+
+
 def write_report(search, ds, reason):
     """Write the report files of a finished search; returns the report text (markdown)."""
     out = search.out
@@ -267,16 +286,16 @@ def write_report(search, ds, reason):
     if several:
         load_text = (f"Duty cycle of {len(search.cycle)} load cases (table below; tilt {s.load.tilt:g} deg, oil "
                      f"{s.load.oil_temperature:g} degC); objective `{obj}` time-weighted over the cycle "
-                     f"(sum of share x per-case value), constraints at every case, L10 over the cycle from the ISO 281 "
-                     f"equivalent load (studies.cycle)")
+                     f"(sum of share x per-case value, minimised), constraints at every case, L10 over the cycle from "
+                     f"the ISO 281 equivalent load (studies.cycle)")
     else:
         load_text = (f"Load case Fa = {s.load.Fa:g} N, Fr = {s.load.Fr:g} N, {s.load.speed:g} rpm, tilt {s.load.tilt:g} deg; "
-                     f"objective `{obj}`")
+                     f"objective `{obj}` (minimised)")
     text = "\n".join([
         f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}" +
-        (f" over a duty cycle of {len(search.cycle)} cases" if several else ""),
+        (f" over the {load_case_label(s)}" if several else ""),
         "",
-        f"{load_text} (minimised); constrained Bayesian optimisation, "
+        f"{load_text}; constrained Bayesian optimisation, "
         f"{s.budget.verify_per_round} designs a round; surrogate intervals "
         f"{'calibrated' if s.surrogate.calibrate else 'not calibrated'}.",
         f"Limits: |axial displacement| <= {search.limits.axial_displacement_max:g} mm, "
@@ -288,7 +307,10 @@ def write_report(search, ds, reason):
         "",
         f"Verified best ({feasible}), simulation #{i}: {params}",
         "",
-        *([f"The verified best has its {words}{' over the duty cycle' if several else ''}.", ""] if words else []),
+        resimulation_text(search, ds, i, best_record),
+        "",
+        *([f"The verified best has{' over the duty cycle' if several else ''} its {words}.", ""] if words else []),
+        *([life_text(search, best_record), ""] if several else []),
         *([local, ""] if local else []),
         *([f"## Duty cycle: {load_case_label(s)}", "", "Verified best at every case, beside the reference TRB "
            f"{s.reference_trb} (full simulations):", "", case_table(search, best_runs), "",

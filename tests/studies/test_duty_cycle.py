@@ -222,4 +222,4 @@ def test_duty_report_names_the_cycle_and_the_ratio_to_the_trb(duty_finished):
     mine = float(np.sum(best.power_loss.values[0] * search.cycle.share))
     r = mine / trb
     assert f"power_loss {abs(100 * (r - 1)):.1f} % {'below' if r < 1 else 'above'} the reference TRB trb_31313" in text
-    assert "over the duty cycle" in text
+    assert "over the duty cycle" in text and "Rating life over the cycle" in text
