@@ -89,13 +89,9 @@ class Limits:
             return np.array([v[quantity] for v in trb_cases], dtype=float)
 
         pmax = [float(c.pmax_max)] * len(cycle) if c.pmax_max != "trb" else trb("pmax_max", "pmax", case_values("pmax"))
-        if c.L10_min != "trb":
-            L10 = float(c.L10_min)
-        elif len(cycle) == 1:   # the simulation's own L10 (cycle_life's value, computed by sim.api)
-            L10 = float(trb("L10_min", "L10", case_values("L10"))[0])
-        else:
-            L10 = cycle_life(trb("L10_min", "C_eff", case_values("C_eff")), trb("L10_min", "P", case_values("P")),
-                             speed, share)
+        # one case: the simulation's own L10, which sim.api computes by the same (C_eff / P)^p
+        L10 = float(c.L10_min) if c.L10_min != "trb" else cycle_life(
+            trb("L10_min", "C_eff", case_values("C_eff")), trb("L10_min", "P", case_values("P")), speed, share)
         return cls(float(c.axial_displacement_max), pmax, L10, bool(c.edge_stress), float(c.PCR_over_Lwe_max),
                    float(Lwe), cycle.column("Fa"), cycle.column("Fr"), speed, share)
 

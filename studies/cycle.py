@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from sim.api import ratings
+from studies.evaluate import EDGE_MARGIN
 
 LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")   # a load case's quantities (DATA.md case coordinates)
 
@@ -126,12 +127,11 @@ def summary_values(values, cycle, objective):
     """
     v = {q: np.asarray(x, dtype=float) for q, x in values.items()}
     speed, share = cycle.column("speed"), cycle.share
-    rules = {"pmax": np.max, "edge_stress": np.max, "edge_stress_margin": np.max, "L_eff": np.min, "C_eff": np.min,
+    rules = {"pmax": np.max, "edge_stress": np.max, EDGE_MARGIN: np.max, "L_eff": np.min, "C_eff": np.min,
              "axial_displacement": lambda x: x[np.argmax(np.abs(x))],
-             "P": lambda x: equivalent_load(x, speed, share)}
+             "P": lambda x: equivalent_load(x, speed, share),
+             "L10": lambda x: cycle_life(v["C_eff"], v["P"], speed, share)}
     out = {q: float(rules.get(q, cycle.weighted)(x)) for q, x in v.items()}
-    if {"C_eff", "P", "L10"} <= set(v) and len(cycle) > 1:
-        out["L10"] = cycle_life(v["C_eff"], v["P"], speed, share)
     if objective in v:
         out[objective] = float(cycle.weighted(v[objective]))
     return out

@@ -6,6 +6,9 @@ at every case, refused cycles, failed cases and resume. Simulations run for real
 on tiny budgets (a few seconds after the numba compile).
 """
 import math
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -21,6 +24,7 @@ from studies.loop import DesignSearch
 from studies.report import write_report
 
 FAST = ["solver.n_slices=10", "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0"]
+CHECKER = Path(__file__).resolve().parents[2].parent / "shared" / "tools" / "check_result.py"
 TINY_DUTY = ["study=pinion_duty", *FAST, "study.initial_design.n=8", "study.budget.max_simulations=10",
              "study.budget.verify_per_round=2", "study.refine.max_simulations=0"]
 
@@ -216,6 +220,10 @@ def test_duty_report_names_the_cycle_and_the_ratio_to_the_trb(duty_finished):
     text = write_report(search, ds, reason)
     assert "duty cycle Fa/Fr, speed, share: 60/0 kN 550 rpm 0.1; 35/0 kN 1100 rpm 0.6; 15/0 kN 1600 rpm 0.3" in text
     assert "| case | Fa [N] |" in text and text.count("| 1600 | 0.3 |") == 1
+    if CHECKER.exists():   # the DATA.md checker of ../shared, as for the single-case files
+        for name in ("training.nc", "verified.nc", "best_design.nc"):
+            chk = subprocess.run([sys.executable, str(CHECKER), str(search.out / name)], capture_output=True, text=True)
+            assert chk.returncode == 0, chk.stdout
     best = xr.load_dataset(search.out / "best_design.nc")
     assert best.sizes["case"] == 3
     trb = search.references["reference TRB"].record["values"]["power_loss"]
