@@ -22,7 +22,7 @@ DESIGN_PARAMETERS = ("PCR", "kappa", "aP", "aPk", "alpha")
 DESIGN_METHODS = ("sobol", "lhs")
 MATERN_NU = (0.5, 1.5, 2.5, math.inf)
 PARETO_OBJECTIVES = ("power_loss", "L10", "pmax")   # objectives of studies.pareto
-CASE_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature", "share")   # keys of a study.duty_cycle entry
+CASE_KEYS = (*LOAD_KEYS, "share")   # keys of a study.duty_cycle entry
 # |sum of the time shares - 1| allowed: shares are written with a few digits, and the float sum of m
 # of them errs by ~m 1e-16, so 1e-9 refuses every real mistake and accepts every exact cycle
 SHARE_SUM_TOLERANCE = 1e-9
@@ -137,8 +137,8 @@ def check_simulations(study, overrides=None):
 
 def _named_load_line(study, k, line):
     """A simulation's message on ``load.KEY ...`` with the study key of case k that sets KEY."""
-    key, rest = line[len("load."):].split(" ", 1)
-    return f"study.{load_key(study, k, key)} {rest}"
+    key, space, rest = line[len("load."):].partition(" ")
+    return f"study.{load_key(study, k, key)}{space}{rest}"
 
 
 def output_dir(study):

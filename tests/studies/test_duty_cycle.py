@@ -231,3 +231,14 @@ def test_duty_report_names_the_cycle_and_the_ratio_to_the_trb(duty_finished):
     r = mine / trb
     assert f"power_loss {abs(100 * (r - 1)):.1f} % {'below' if r < 1 else 'above'} the reference TRB trb_31313" in text
     assert "over the duty cycle" in text and "Rating life over the cycle" in text
+
+
+def test_one_case_commands_refuse_a_cycle_before_simulating(tmp_path, monkeypatch, capsys):
+    """studies.pareto runs one load case: a duty cycle is refused (exit 2, the key named) before any
+    simulation, and the study folder it would have made is removed again."""
+    from studies import pareto
+
+    monkeypatch.chdir(tmp_path)
+    assert pareto.main(["study=pinion_duty"]) == 2
+    assert "study.duty_cycle has 3 load cases: python -m studies.pareto runs one load case" in capsys.readouterr().err
+    assert not (tmp_path / "outputs").exists()
