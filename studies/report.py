@@ -9,6 +9,8 @@ Writes into the study folder:
 - ``report.md``: the comparison with the reference TRB and the thesis design, and the
   cross-validation of the final surrogates (also printed).
 """
+import textwrap
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -23,6 +25,7 @@ from studies.evaluate import STATUS, case_values, design_config, design_matrix, 
 from surrogate import cross_validate_outputs  # noqa: E402
 
 COLUMNS = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "edge_stress")
+TITLE_WIDTH = 90   # characters of a figure title line at fontsize 8-9 on the 7-10 inch wide figures here
 
 
 def verified_dataset(search, ds):
@@ -82,6 +85,11 @@ def ratio_in_words(name, value, reference_label, reference_value):
 
 
 # ---------------------------------------------------------------------------- plots
+def wrapped(label):
+    """A title line broken to the width of a figure (a duty cycle's label is long)."""
+    return textwrap.fill(label, TITLE_WIDTH)
+
+
 def plot_history(search, vds, refs, path):
     """Objective of every full simulation in run order; running best feasible; references (an
     infeasible TSRB reference, e.g. the thesis design under the study's constraints, is marked)."""
@@ -101,10 +109,11 @@ def plot_history(search, vds, refs, path):
             infeasible = m is not None and violation(m) > 0.0
             ax.axhline(record["values"][obj], color=f"C{i + 1}", ls=":" if infeasible else "--", lw=1,
                        label=f"{label} (INFEASIBLE here)" if infeasible else label)
-    ax.set_xlabel("full simulation")
-    ax.set_ylabel(f"{obj}{' (time-weighted over the cycle)' if len(search.cycle) > 1 else ''} "
+    several = len(search.cycle) > 1
+    ax.set_xlabel(f"full simulation{' (a design at every case)' if several else ''}")
+    ax.set_ylabel(f"{obj}{', time-weighted' if several else ''} "
                   f"[{vds[obj].attrs.get('units', '')}]")
-    ax.set_title(f"{search.study.name}: optimisation history\n{load_case_label(search.study)}", fontsize=9)
+    ax.set_title(f"{search.study.name}: optimisation history\n{wrapped(load_case_label(search.study))}", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
