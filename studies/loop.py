@@ -250,9 +250,13 @@ class DesignSearch:
             self.save_training(ds)
             self.log(f"initial design: {ds.sizes['design']} of {len(X)} simulated")
         counts = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
-        per = f" designs x {len(self.cycle)} cases" if len(self.cycle) > 1 else ""
-        self.log(f"initial design: {len(X) - done} {d.method}{per} simulations in {time.perf_counter() - t0:.1f} s {counts}")
+        self.log(f"initial design: {self.count(len(X) - done, str(d.method))} in {time.perf_counter() - t0:.1f} s {counts}")
         return ds
+
+    def count(self, n, kind=""):
+        """'n [kind] simulations', or in a duty cycle 'n [kind] designs x m cases' (for the log)."""
+        kind = f"{kind} " if kind else ""
+        return f"{n} {kind}simulations" if len(self.cycle) == 1 else f"{n} {kind}designs x {len(self.cycle)} cases"
 
     # ------------------------------------------------------------------ judging simulated points
     def objective_values(self, ds):
@@ -479,7 +483,7 @@ class DesignSearch:
             i, after = self.best(ds)
             stale = 0 if improved(before, after, float(b.min_improvement)) else stale + 1
             state = "feasible" if after[0] == 0 else "infeasible, violation"
-            self.log(f"round {r}: {ds.sizes['design']} simulations; best #{i} ({state} {after[1]:.6g})")
+            self.log(f"round {r}: {self.count(ds.sizes['design'])}; best #{i} ({state} {after[1]:.6g})")
             if stale >= int(b.patience):
                 reason = f"verified best not improved for {stale} rounds"
                 break
