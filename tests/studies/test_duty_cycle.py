@@ -18,7 +18,7 @@ from omegaconf import OmegaConf
 import sim
 from studies.config import StudyConfigError, check_simulations, compose, validate
 from studies.constraints import Limits, margins, violation
-from studies.cycle import LIFE_EXPONENT, DutyCycle, cycle_life, equivalent_load
+from studies.cycle import LIFE_EXPONENT, DutyCycle, cycle_life, equivalent_load, summary_values
 from studies.evaluate import STATUS, points_dataset, table_from_file
 from studies.loop import DesignSearch
 from studies.report import write_report
@@ -53,6 +53,30 @@ def test_equivalent_load_of_a_two_case_cycle_by_hand():
     assert cycle_life([C, 2 * C], [1e4, 2e4], [1e3, 5e2], [0.25, 0.75]) == cycle_life([C, C], [1e4, 2e4], [1e3, 5e2],
                                                                                      [0.25, 0.75])
     assert equivalent_load([12345.678], [700.0], [1.0]) == 12345.678
+
+
+def test_cycle_summary_of_a_design():
+    """The one-line values of a design over a cycle (report tables, direct search): objective
+    time-weighted, worst pmax and edge margin, axial displacement of largest magnitude (sign kept),
+    least C_eff, P_eq and L10 over the cycle; one case returns its own values."""
+    study = OmegaConf.create({"load": {"Fa": 1.0, "Fr": 0.0, "speed": 1.0, "tilt": 0.0, "oil_temperature": 50.0},
+                              "duty_cycle": [{"Fa": 1e4, "Fr": 0.0, "speed": 1000.0, "share": 0.25},
+                                             {"Fa": 2e4, "Fr": 0.0, "speed": 500.0, "share": 0.75}]})
+    cycle = DutyCycle.from_config(study)
+    values = {"power_loss": [100.0, 300.0], "pmax": [900.0, 1200.0], "axial_displacement": [0.01, -0.03],
+              "C_eff": [160000.0, 150000.0], "P": [10000.0, 20000.0], "L10": [1.0, 1.0],
+              "edge_stress_margin": [-0.5, -0.2]}
+    out = summary_values(values, cycle, "power_loss")
+    assert out["power_loss"] == 0.25 * 100.0 + 0.75 * 300.0
+    assert (out["pmax"], out["axial_displacement"], out["C_eff"], out["edge_stress_margin"]) == (1200.0, -0.03, 150000.0,
+                                                                                                 -0.2)
+    assert out["P"] == pytest.approx(17491.2098858283, rel=1e-12)          # the hand value above
+    # rtol 1e-11: the 1e-12 of P_eq raised to p = 10/3
+    assert out["L10"] == pytest.approx((150000.0 / 17491.2098858283) ** LIFE_EXPONENT, rel=1e-11)
+    one = DutyCycle.from_config(OmegaConf.create({"load": study.load, "duty_cycle": None}))
+    single = {q: v[:1] for q, v in values.items()}
+    single["L10"] = [(160000.0 / 10000.0) ** LIFE_EXPONENT]
+    assert summary_values(single, one, "power_loss") == {q: v[0] for q, v in single.items()}
 
 
 def limits_of_three_cases():
