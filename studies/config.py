@@ -15,13 +15,17 @@ from omegaconf.errors import OmegaConfBaseException
 
 import sim
 from sim.api import GeometryError, InputError
+from studies.cycle import LOAD_KEYS, DutyCycle
 
 SAMPLERS = ("tpe", "gp", "nsga2")
 DESIGN_PARAMETERS = ("PCR", "kappa", "aP", "aPk", "alpha")
 DESIGN_METHODS = ("sobol", "lhs")
 MATERN_NU = (0.5, 1.5, 2.5, math.inf)
-LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
 PARETO_OBJECTIVES = ("power_loss", "L10", "pmax")   # objectives of studies.pareto
+CASE_KEYS = (*LOAD_KEYS, "share")   # keys of a study.duty_cycle entry
+# |sum of the time shares - 1| allowed: shares are written with a few digits, and the float sum of m
+# of them errs by ~m 1e-16, so 1e-9 refuses every real mistake and accepts every exact cycle
+SHARE_SUM_TOLERANCE = 1e-9
 DEFAULT_STUDY = "pinion"
 OUTPUT_ROOT = Path("outputs") / "studies"
 
@@ -89,36 +93,52 @@ def compose(overrides=None):
     return cfg
 
 
-def simulation_config(study, bearing, overrides=None):
-    """Composed simulation config of ``bearing`` (a conf/bearing name) at the study's load case."""
+def simulation_config(study, bearing, overrides=None, case=None):
+    """Composed simulation config of ``bearing`` (a conf/bearing name) at the load case ``case``
+    (a dict of LOAD_KEYS, a case of studies.cycle.DutyCycle; default: ``study.load``)."""
     cfg = _composed([f"bearing={bearing}", f"lubricant={study.lubricant}", *simulation_overrides(overrides)])
     for key in LOAD_KEYS:
-        cfg.load[key] = float(study.load[key])
+        cfg.load[key] = float((study.load if case is None else case)[key])
     return cfg
+
+
+def load_key(study, k, key):
+    """The study key that sets load quantity ``key`` of case k: ``duty_cycle[k].key`` where the
+    cycle's entry sets it, else ``load.key``."""
+    cycle = study.get("duty_cycle")
+    return f"duty_cycle[{k}].{key}" if cycle and key in cycle[k] else f"load.{key}"
 
 
 def check_simulations(study, overrides=None):
     """Check the simulation of each bearing of the study (its design template, the reference TRB,
-    the thesis design) at the study's load case as a run checks its input, without computing
-    (:func:`sim.api.sweep.preflight`: schema ranges, geometry, friction inputs).
+    the thesis design) at each load case of its duty cycle as a run checks its input, without
+    computing (:func:`sim.api.sweep.preflight`: schema ranges, geometry, friction inputs).
 
     Raises
     ------
     StudyConfigError
         Naming each problem; a load value is named as the study key that sets it
-        (``study.load.Fa = -5.0 is outside the allowed range: ...``).
+        (``study.load.Fa = -5.0 is outside the allowed range: ...``, or
+        ``study.duty_cycle[2].Fa = ...``).
     """
     from sim.api.sweep import preflight
 
-    for role in dict.fromkeys(("bearing", "reference_trb", "thesis_design")):
-        name = study[role]
-        try:
-            preflight(simulation_config(study, name, overrides))
-        except (InputError, GeometryError) as err:
-            lines = [f"study.{line}" if line.startswith("load.")
-                     else f"{line} (in the simulation of study.{role} = {name!r})"
-                     for line in str(err).splitlines() if line.strip()]
-            raise StudyConfigError("\n".join(lines)) from err
+    for k, case in enumerate(DutyCycle.from_config(study).cases):
+        for role in dict.fromkeys(("bearing", "reference_trb", "thesis_design")):
+            name = study[role]
+            try:
+                preflight(simulation_config(study, name, overrides, case))
+            except (InputError, GeometryError) as err:
+                lines = [_named_load_line(study, k, line) if line.startswith("load.")
+                         else f"{line} (in the simulation of study.{role} = {name!r})"
+                         for line in str(err).splitlines() if line.strip()]
+                raise StudyConfigError("\n".join(lines)) from err
+
+
+def _named_load_line(study, k, line):
+    """A simulation's message on ``load.KEY ...`` with the study key of case k that sets KEY."""
+    key, space, rest = line[len("load."):].partition(" ")
+    return f"study.{load_key(study, k, key)}{space}{rest}"
 
 
 def output_dir(study):
@@ -248,9 +268,33 @@ def validate(study):
     load = s.get("load", {})
     for key in LOAD_KEYS:
         _require(_is_number(load.get(key)), f"load.{key}", load.get(key), "a finite number (checked by the simulation)")
+    _validate_duty_cycle(s.get("duty_cycle"))
     for key, group in (("bearing", "bearing"), ("reference_trb", "bearing"), ("thesis_design", "bearing"),
                        ("lubricant", "lubricant")):
         v = s.get(key)
         _require(isinstance(v, str) and (sim.CONF_DIR / group / f"{v}.yaml").is_file(), key, v,
                  f"a config of conf/{group}/: {sorted(p.stem for p in (sim.CONF_DIR / group).glob('*.yaml'))}")
     return study
+
+
+def _validate_duty_cycle(cycle):
+    """``study.duty_cycle``: null, or a non-empty list of cases {Fa, Fr, speed, share} (tilt and
+    oil_temperature optional) with shares in (0, 1] summing to 1 and speeds > 0 (the cycle's
+    equivalent load weighs each case by its revolutions, studies.cycle.equivalent_load); the
+    load values' own ranges are checked by the simulation (:func:`check_simulations`)."""
+    if cycle is None:
+        return
+    _require(isinstance(cycle, list) and len(cycle) > 0, "duty_cycle", cycle,
+             "null (one case: study.load) or a non-empty list of {Fa, Fr, speed, share}")
+    for k, entry in enumerate(cycle):
+        _require(isinstance(entry, dict) and {"Fa", "Fr", "speed", "share"} <= set(entry) and set(entry) <= set(CASE_KEYS),
+                 f"duty_cycle[{k}]", entry, f"a mapping with Fa, Fr, speed, share and optionally tilt, oil_temperature "
+                                            f"(keys from {list(CASE_KEYS)})")
+        for key in entry:
+            _require(_is_number(entry[key]), f"duty_cycle[{k}].{key}", entry[key], "a finite number")
+        _require(entry["speed"] > 0.0, f"duty_cycle[{k}].speed", entry["speed"],
+                 "a number > 0 [rpm] (the cycle's equivalent load weighs cases by revolutions)")
+        _require(0.0 < entry["share"] <= 1.0, f"duty_cycle[{k}].share", entry["share"], "a time share in (0, 1]")
+    total = math.fsum(e["share"] for e in cycle)
+    _require(abs(total - 1.0) <= SHARE_SUM_TOLERANCE, "duty_cycle[*].share", [e["share"] for e in cycle],
+             f"time shares summing to 1 (+- {SHARE_SUM_TOLERANCE:g}); they sum to {total!r}")

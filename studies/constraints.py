@@ -8,14 +8,22 @@ name                   margin
 =====================  ============================================================
 simulation             0 ok; 1 impossible geometry, failed or not converged (surrogate:
                        minus the predicted convergence label, which is +1 / -1)
-axial_displacement     |axial displacement| / limit - 1 (rib-free, thesis Annex A.2.1)
-pmax                   pmax / limit - 1 (thesis 7.3: pressure similar to the TRB)
-L10                    1 - L10 / L10_min, L10 = (C_eff / P)^p of eq. (2.15) with C_eff (7.1)
-                       and P (2.12) at the design's rating angle
-edge_stress            edge-stress margin (studies.evaluate.edge_stress_margin); only when
+axial_displacement     max over the cases of |axial displacement| / limit - 1 (rib-free,
+                       thesis Annex A.2.1)
+pmax                   max over the cases of pmax_i / limit_i - 1, limit_i that of the case
+                       (thesis 7.3: pressure similar to the TRB at the same load)
+L10                    1 - L10 / L10_min, L10 over the duty cycle (studies.cycle.cycle_life:
+                       (C_eff / P_eq)^p of eq. (2.15) with C_eff (7.1), P (2.12) at the design's
+                       rating angle); one case: (C_eff / P)^p
+edge_stress            max over the cases of the edge-stress margin
+                       (studies.evaluate.edge_stress_margin); only when
                        ``constraints.edge_stress`` is true (thesis 7.3, step 12)
 PCR_over_Lwe           PCR / (ratio_max Lwe) - 1 (issue 5), exact
 =====================  ============================================================
+
+A constraint violated at any one case of the duty cycle (studies.cycle) makes the design
+infeasible: the per-case margins are reduced by their maximum. For a one-case study every
+reduction is the identity, so its margins are those of the single-case study bit for bit.
 """
 from dataclasses import dataclass
 
@@ -23,59 +31,80 @@ import numpy as np
 
 from sim.api import ratings
 from studies.config import StudyConfigError
+from studies.cycle import LIFE_EXPONENT, cycle_life, equivalent_load
 from studies.evaluate import EDGE_MARGIN
 
 FAILED = 1.0  # margin of a point without results: one limit's worth of violation, so a sampler ranks it
-LIFE_EXPONENT = 10.0 / 3.0  # p of L10 = (C / P)^p for roller bearings, ISO 281 / thesis eq. (2.15)
 
 
 @dataclass(frozen=True)
 class Limits:
-    """Limits of the constraints at the study's load case.
+    """Limits of the constraints over the study's duty cycle (studies.cycle; one case: its load case).
 
     Attributes
     ----------
     axial_displacement_max : float  [mm]
-    pmax_max : float  [MPa]
-    L10_min : float  [1e6 rev]
+    pmax_max : tuple of float  [MPa], one per case
+    L10_min : float  [1e6 rev], over the cycle
     edge_stress : bool
         Whether an edge-stress peak is forbidden.
     PCR_over_Lwe_max : float  [1]
     Lwe : float  [mm]
-    Fa, Fr : float  [N]
+    Fa, Fr : tuple of float  [N], one per case
+    speed, share : tuple of float  [rpm], [1], one per case (the weights of the cycle's P_eq)
+
+    Per-case fields given as numbers (limits stored by an older study) are read as one case.
     """
 
     axial_displacement_max: float
-    pmax_max: float
+    pmax_max: tuple
     L10_min: float
     edge_stress: bool
     PCR_over_Lwe_max: float
     Lwe: float
-    Fa: float
-    Fr: float
+    Fa: tuple
+    Fr: tuple
+    speed: tuple = (1.0,)
+    share: tuple = (1.0,)
+
+    def __post_init__(self):
+        for key in ("pmax_max", "Fa", "Fr", "speed", "share"):
+            object.__setattr__(self, key, tuple(float(v) for v in np.atleast_1d(getattr(self, key))))
 
     @classmethod
-    def from_config(cls, study, trb_values, Lwe):
-        """Limits from ``study.constraints``; ``"trb"`` entries from the reference TRB's results."""
+    def from_config(cls, study, trb_cases, Lwe, cycle):
+        """Limits from ``study.constraints``; ``"trb"`` entries from the reference TRB's results
+        ``trb_cases`` (one values dict per case of ``cycle``, studies.cycle.DutyCycle): its pmax
+        at each case, its L10 over the cycle."""
         c = study.constraints
+        speed, share = cycle.column("speed"), cycle.share
 
-        def limit(key, quantity):
-            if c[key] != "trb":
-                return float(c[key])
-            value = trb_values[quantity]
-            if not np.isfinite(value):
+        def trb(key, quantity, value):
+            if not np.all(np.isfinite(value)):
                 raise StudyConfigError(f"study.constraints.{key} = 'trb' but the reference TRB {study.reference_trb} has no "
-                                 f"{quantity} at this load (not converged)")
-            return float(value)
+                                       f"{quantity} at every load case (not converged)")
+            return value
 
-        return cls(float(c.axial_displacement_max), limit("pmax_max", "pmax"), limit("L10_min", "L10"),
-                   bool(c.edge_stress), float(c.PCR_over_Lwe_max), float(Lwe), float(study.load.Fa),
-                   float(study.load.Fr))
+        def case_values(quantity):
+            return np.array([v[quantity] for v in trb_cases], dtype=float)
+
+        pmax = [float(c.pmax_max)] * len(cycle) if c.pmax_max != "trb" else trb("pmax_max", "pmax", case_values("pmax"))
+        # one case: the simulation's own L10, which sim.api computes by the same (C_eff / P)^p
+        L10 = float(c.L10_min) if c.L10_min != "trb" else cycle_life(
+            trb("L10_min", "C_eff", case_values("C_eff")), trb("L10_min", "P", case_values("P")), speed, share)
+        return cls(float(c.axial_displacement_max), pmax, L10, bool(c.edge_stress), float(c.PCR_over_Lwe_max),
+                   float(Lwe), cycle.column("Fa"), cycle.column("Fr"), speed, share)
+
+    def P(self, ratings_alpha):
+        """Equivalent dynamic load (eq. 2.12) [N] of each case for designs rated at ``ratings_alpha``
+        [deg] (float or array): a list over the cases."""
+        return [ratings.equivalent_dynamic_load(fr, fa, ratings_alpha) for fr, fa in zip(self.Fr, self.Fa)]
 
     def C_eff_min(self, ratings_alpha):
         """C_eff [N] at which L10 = L10_min for designs rated at ``ratings_alpha`` [deg] (float or
-        array): P L10_min^(1/p), P of eq. (2.12) (the L10 margin is <= 0 exactly for C_eff >= this)."""
-        P = np.asarray(ratings.equivalent_dynamic_load(self.Fr, self.Fa, ratings_alpha), dtype=float)
+        array): P_eq L10_min^(1/p), P_eq over the cycle (studies.cycle.equivalent_load; the L10
+        margin is <= 0 exactly when the C_eff of every case reaches this)."""
+        P = np.asarray(equivalent_load(self.P(ratings_alpha), self.speed, self.share), dtype=float)
         return P * self.L10_min ** (1.0 / LIFE_EXPONENT)
 
     @property
@@ -92,7 +121,8 @@ def margins(values, bearing, limits, simulation):
     ----------
     values : dict
         ``pmax`` [MPa], ``axial_displacement`` [mm], ``C_eff`` [N], ``edge_stress_margin`` [1];
-        simulated or predicted; NaN where there is no result.
+        simulated or predicted, each a number or one value per case of ``limits``; NaN where
+        there is no result.
     bearing : dict
         Design parameters (``PCR`` [mm], ``ratings_alpha`` [deg]).
     limits : Limits
@@ -106,15 +136,15 @@ def margins(values, bearing, limits, simulation):
         margins are 0: the ``simulation`` margin alone marks the point infeasible.
     """
     geometric = exact_margin(bearing, limits)
-    needed = [values[k] for k in ("pmax", "axial_displacement", "C_eff", *((EDGE_MARGIN,) if limits.edge_stress else ()))]
-    if not np.all(np.isfinite(needed)):
+    keys = ("pmax", "axial_displacement", "C_eff", *((EDGE_MARGIN,) if limits.edge_stress else ()))
+    v = {k: np.atleast_1d(np.asarray(values[k], dtype=float)) for k in keys}
+    if not all(np.all(np.isfinite(x)) for x in v.values()):
         return np.array([simulation, *([0.0] * (len(limits.names) - 2)), geometric])
-    P = float(ratings.equivalent_dynamic_load(limits.Fr, limits.Fa, bearing["ratings_alpha"]))
-    L10 = float(ratings.basic_rating_life(values["C_eff"], P, LIFE_EXPONENT)) if values["C_eff"] > 0.0 else 0.0
-    out = [simulation, abs(values["axial_displacement"]) / limits.axial_displacement_max - 1.0,
-           values["pmax"] / limits.pmax_max - 1.0, 1.0 - L10 / limits.L10_min]
+    L10 = cycle_life(v["C_eff"], limits.P(bearing["ratings_alpha"]), limits.speed, limits.share)
+    out = [simulation, float(np.max(np.abs(v["axial_displacement"]) / limits.axial_displacement_max - 1.0)),
+           float(np.max(v["pmax"] / np.array(limits.pmax_max) - 1.0)), 1.0 - L10 / limits.L10_min]
     if limits.edge_stress:
-        out.append(values[EDGE_MARGIN])
+        out.append(float(np.max(v[EDGE_MARGIN])))
     out.append(geometric)
     return np.array(out, dtype=float)
 

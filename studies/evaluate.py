@@ -118,34 +118,64 @@ def evaluate_design(base_cfg, values, quantities):
     return simulate_point(design_config(base_cfg, values), quantities)[1]
 
 
-def evaluate_designs(base_cfg, points, quantities, n_jobs):
-    """:func:`evaluate_design` for a list of design-parameter dicts, in order, in ``n_jobs``
-    processes that die with this one (:func:`sim.api.worker_pool`: a killed study leaves no
-    simulation running)."""
-    if n_jobs == 1 or len(points) <= 1:
-        return [evaluate_design(base_cfg, p, quantities) for p in points]
-    with worker_pool(min(n_jobs, len(points))) as pool:
-        return list(pool.map(evaluate_design, [base_cfg] * len(points), points, [quantities] * len(points)))
+def evaluate_designs(case_cfgs, points, quantities, n_jobs):
+    """:func:`evaluate_design` of every design-parameter dict of ``points`` at every load case
+    (``case_cfgs``: the template config at each case of the duty cycle), in ``n_jobs`` processes
+    that die with this one (:func:`sim.api.worker_pool`: a killed study leaves no simulation
+    running). Returns one list of per-case records per point, in order."""
+    pairs = [(cfg, p) for p in points for cfg in case_cfgs]
+    if n_jobs == 1 or len(pairs) <= 1:
+        flat = [evaluate_design(cfg, p, quantities) for cfg, p in pairs]
+    else:
+        with worker_pool(min(n_jobs, len(pairs))) as pool:
+            flat = list(pool.map(evaluate_design, *zip(*pairs), [quantities] * len(pairs)))
+    m = len(case_cfgs)
+    return [flat[i:i + m] for i in range(0, len(flat), m)]
 
 
-def points_dataset(space, X, records, source, round_index, attrs):
-    """Dataset of simulated design points along ``design`` (DATA.md names and units).
+def worst_status(statuses):
+    """The status of a design from those of its cases: ok only if every case is ok, else the
+    worst by :data:`STATUS` code (not converged < impossible geometry < failed)."""
+    return STATUS_NAMES[max(STATUS[s] for s in statuses)]
+
+
+def case_values(records):
+    """{quantity: array over the cases} of one design's per-case records (NaN where a case has none)."""
+    return {q: np.array([r["values"][q] for r in records], dtype=float) for q in records[0]["values"]}
+
+
+def case_dataset_coords(cycle):
+    """Coordinates of the ``case`` dim: the load quantities (sim.io.case_coords) and the time share."""
+    coords = case_coords([OperatingPoint.from_config(c) for c in cycle.cases])
+    coords["share"] = ("case", np.asarray(cycle.share, dtype=float), {"units": "1", "long_name": "time share of the case "
+                                                                                                  "in the duty cycle"})
+    return coords
+
+
+def points_dataset(space, X, records, source, round_index, attrs, cycle):
+    """Dataset of simulated design points along ``design`` and the duty cycle's load cases along
+    ``case`` (DATA.md names and units).
 
     Parameters
     ----------
     space : studies.space.DesignSpace
     X : ndarray, shape (n, d)
         The points [parameter units].
-    records : list of dict
-        From :func:`evaluate_design`.
+    records : list of list of dict
+        Per point, the per-case records of :func:`evaluate_designs`.
     source : str
         ``initial`` (space-filling design), ``verification`` or ``refinement`` (studies.refine).
     round_index : int
         0 for the initial design, -1 for the final local stage, else the verification round.
     attrs : dict
         Dataset attributes (provenance, study config).
+    cycle : studies.cycle.DutyCycle
+        The load cases (coordinates of ``case``, with their time shares).
+
+    Results, ``case_status``, ``message`` and ``wall_time`` are per (design, case): a failed case
+    is recorded as failed; ``status`` is the design's (:func:`worst_status`).
     """
-    n = len(records)
+    n, m = len(records), len(cycle)
     values = [space.bearing_values(x) for x in X]
     coords = {k: ("design", [v[k] for v in values], {"units": u, "long_name": ln})
               for k, u, ln in (("PCR", "mm", "profile curve radius of the roller"), ("kappa", "1", "osculation (2.7)"),
@@ -157,52 +187,50 @@ def points_dataset(space, X, records, source, round_index, attrs):
                         {"long_name": "initial (space-filling), verification or refinement (final local stage) run"})
     coords["round"] = ("design", np.full(n, round_index, dtype=np.int32),
                        {"units": "1", "long_name": "verification round (0: initial design, -1: final local stage)"})
-    names = list(records[0]["values"]) if records else []
+    coords.update(case_dataset_coords(cycle))
+    names = list(records[0][0]["values"]) if records else []
     meta = {EDGE_MARGIN: EDGE_MARGIN_ATTRS}
-    for r in records:
+    for r in (r for point in records for r in point):
         for q, a in r["attrs"].items():
             meta.setdefault(q, a)
-    data = {q: ("design", np.array([r["values"][q] for r in records], dtype=float), meta.get(q, {})) for q in names}
-    data["status"] = ("design", np.array([STATUS[r["status"]] for r in records], dtype=np.int8),
-                      {"long_name": "simulation status", "flag_values": np.array(list(STATUS.values()), dtype=np.int8),
-                       "flag_meanings": " ".join(STATUS)})
-    data["message"] = ("design", np.array([r["message"] for r in records], dtype=object),
-                       {"long_name": "why the point has no result"})
-    data["wall_time"] = ("design", np.array([r["wall_time"] for r in records]),
-                         {"units": "s", "long_name": "simulation wall time"})
+
+    def table(key, dtype, convert=lambda v: v):
+        return np.array([[convert(r[key]) for r in point] for point in records], dtype=dtype).reshape(n, m)
+
+    data = {q: (("design", "case"), np.array([[r["values"][q] for r in point] for point in records],
+                                             dtype=float).reshape(n, m), meta.get(q, {})) for q in names}
+    flags = {"flag_values": np.array(list(STATUS.values()), dtype=np.int8), "flag_meanings": " ".join(STATUS)}
+    data["status"] = ("design", np.array([STATUS[worst_status([r["status"] for r in point])] for point in records],
+                                         dtype=np.int8), {"long_name": "simulation status of the design (the worst of "
+                                                                       "its load cases)", **flags})
+    data["case_status"] = (("design", "case"), table("status", np.int8, STATUS.__getitem__),
+                           {"long_name": "simulation status of the design at the load case", **flags})
+    data["message"] = (("design", "case"), table("message", object), {"long_name": "why the case has no result"})
+    data["wall_time"] = (("design", "case"), table("wall_time", float), {"units": "s", "long_name": "simulation wall time"})
     return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
-# On disk (training.nc, verified.nc) a per-point table follows DATA.md: results on (design, case)
-# with the study's one load case, and the race maximum of pmax under its own name (DATA.md's pmax
-# is per race). Per-design variables that are no simulation result keep the design dim only.
+# On disk (training.nc, verified.nc) a per-point table follows DATA.md: results on (design, case),
+# and the race maximum of pmax under its own name (DATA.md's pmax is per race).
 RACE_MAXIMA = {"pmax": ("pmax_any_race", "maximum contact pressure over both races, all rollers and slices")}
-PER_DESIGN = ("status", "message", "feasible", EDGE_MARGIN)
 
 
-def table_to_file(ds, load):
-    """A per-point table ``ds`` (dim design) in its DATA.md form for writing.
-
-    Result variables on ``design`` get a ``case`` dim of length 1 with the coordinates of the
-    load case ``load`` (sim.io.case_coords); race maxima are renamed (RACE_MAXIMA); the
-    creation time joins the provenance.
-    """
+def table_to_file(ds):
+    """A per-point table ``ds`` in its DATA.md form for writing: race maxima renamed
+    (RACE_MAXIMA); the creation time joins the provenance."""
     out = ds
     for old, (new, long_name) in RACE_MAXIMA.items():
         if old in out:
             out = out.rename({old: new})
             out[new].attrs["long_name"] = long_name
-    case_vars = [v for v in out.data_vars if out[v].dims == ("design",) and v not in PER_DESIGN]
-    out = out.assign({v: out[v].expand_dims("case", axis=1) for v in case_vars})
-    out = out.assign_coords(case_coords([OperatingPoint.from_config(load)]))
     out.attrs.setdefault("created", utc_now())
     return out
 
 
 def table_from_file(ds):
-    """Inverse of :func:`table_to_file`: the per-point table (dim design) the search works on,
-    with the simulation's own long_name on the race maxima (sim.io.CASE_VARIABLES)."""
-    out = ds.drop_vars([k for k in ds.coords if ds[k].dims == ("case",)]).squeeze("case", drop=True)
+    """Inverse of :func:`table_to_file`: the per-point table the search works on, with the
+    simulation's own long_name on the race maxima (sim.io.CASE_VARIABLES)."""
+    out = ds
     for old, (new, _) in RACE_MAXIMA.items():
         if new in out:
             out = out.rename({new: old})

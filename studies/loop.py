@@ -15,6 +15,13 @@
    ``study.refine``): COBYLA under every constraint, its points stored as source ``refinement``
    (round -1) and outside the loop's budget and rounds.
 
+Duty cycle (``study.duty_cycle``, :mod:`studies.cycle`, issue 16 item 5): every design is
+simulated at every load case (results on ``(design, case)``); the objective is the time-weighted
+mean over the cases, the constraints hold at every case (:mod:`studies.constraints`), and one
+set of constraint surrogates is fitted per case beside one GP of the cycle objective
+(``<output>_case<k>``; benchmarks/bench_duty_layout.py measured this layout against one GP over
+design x case). A one-case study is the one-case cycle, with the names and numbers it had.
+
 Everything lives under the study's folder, so running the same command again resumes where it
 stopped: a round's surrogates are loaded from their folder and its proposal is deterministic
 (seeded by the study seed and the round), so a round killed while simulating proposes the same
@@ -32,8 +39,10 @@ from sim.api import Geometry, GeometryError
 from sim.io import write_netcdf_atomic
 from studies.config import StudyConfigError, output_dir, simulation_config
 from studies.constraints import FAILED, Limits, exact_margin, margins, rank_key
-from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, STATUS_NAMES, design_matrix, evaluate_design, evaluate_designs,
-                              points_dataset, simulate_point, table_from_file, table_to_file)
+from studies.cycle import DutyCycle, summary_values
+from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, STATUS_NAMES, case_values, design_matrix, evaluate_design,
+                              evaluate_designs, points_dataset, simulate_point, table_from_file, table_to_file,
+                              worst_status)
 from studies.refine import SOURCE as REFINEMENT, local_refine
 from studies.search import complete_trials
 from studies.space import DesignSpace
@@ -41,6 +50,7 @@ from surrogate import (CandidateSettings, Constraint, GPSettings, GPSurrogate, S
                        propose, save_surrogates, saved_set)
 
 SUCCESS = "success"      # the classifier of simulations that gave a result, in a round's surrogate set
+CONSTRAINED = ("pmax", "axial_displacement", "C_eff")   # per-case outputs with a surrogate (and EDGE_MARGIN)
 # study keys that do not change results: a study may be resumed with other values
 RESUMABLE_KEYS = ("budget", "n_jobs", "storage", "name", "workers", "refine")
 REFINEMENT_ROUND = -1    # ``round`` of the final local stage's points
@@ -52,13 +62,24 @@ INITIAL_CHUNK_PER_JOB = 4
 
 @dataclass
 class Reference:
-    """A reference bearing simulated at the study's load case."""
+    """A reference bearing simulated at every load case of the study's duty cycle."""
 
     label: str
     bearing: str
-    cfg: object  # the composed simulation config
-    ds: xr.Dataset
-    record: dict
+    cfgs: list       # the composed simulation config of each case
+    datasets: list   # the full result of each case (None where it failed)
+    records: list    # studies.evaluate.simulate_point's record of each case
+    record: dict     # the cycle's record: status, message, wall_time and summary values (DesignSearch.summary)
+
+    @property
+    def cfg(self):
+        """The config of the first case (bearing, lubricant, solver: the same at every case)."""
+        return self.cfgs[0]
+
+    @property
+    def ds(self):
+        """The full result of the first case."""
+        return self.datasets[0]
 
 
 def round_seed(seed, *indices):
@@ -95,7 +116,10 @@ class DesignSearch:
         self.overrides = list(overrides)
         self.out = Path(out_dir) if out_dir is not None else output_dir(s)
         self.log = log
-        self.base_cfg = simulation_config(s, s.bearing, self.overrides)
+        self.cycle = DutyCycle.from_config(s)
+        # the template design at each case of the duty cycle; the first holds what all share (bearing, solver, ...)
+        self.case_cfgs = [simulation_config(s, s.bearing, self.overrides, case) for case in self.cycle.cases]
+        self.base_cfg = self.case_cfgs[0]
         self.space = DesignSpace.from_config(s, self.base_cfg.bearing)
         self.objective = str(s.objective)
         self.quantities = tuple(dict.fromkeys((self.objective, *RECORDED)))
@@ -109,20 +133,47 @@ class DesignSearch:
         self.local = None        # studies.refine.LocalResult of the final local stage, once run
         self._refined = None     # the local stage's points, kept apart from the loop's (training.nc holds both)
 
+    def require_one_case(self, command):
+        """Refuse a duty cycle of several cases in a command that runs one load case.
+
+        Raises
+        ------
+        StudyConfigError
+            Naming study.duty_cycle and the command that takes it (studies.optimize).
+        """
+        if len(self.cycle) > 1:
+            raise StudyConfigError(f"study.duty_cycle has {len(self.cycle)} load cases: {command} runs one load case "
+                                   f"(study.load, study.duty_cycle null); a duty cycle runs with python -m studies.optimize")
+
     # ------------------------------------------------------------------ references and limits
     def run_references(self):
-        """Simulate the reference TRB and the thesis design; set the constraint limits."""
+        """Simulate the reference TRB and the thesis design at every case; set the constraint limits."""
         for label, name in (("reference TRB", self.study.reference_trb), ("thesis design", self.study.thesis_design)):
-            cfg = simulation_config(self.study, name, self.overrides)
+            cfgs = [simulation_config(self.study, name, self.overrides, case) for case in self.cycle.cases]
             try:
-                ds, record = simulate_point(cfg, self.quantities)
+                runs = [simulate_point(cfg, self.quantities) for cfg in cfgs]
             except KeyError as err:
                 raise StudyConfigError(f"study.objective = {self.objective!r} (or a constraint quantity) is not a "
                                        f"result of the simulation: {err.args[0]}") from err
-            self.references[label] = Reference(label, str(name), cfg, ds, record)
-        trb = self.references["reference TRB"].record
-        self.limits = Limits.from_config(self.study, trb["values"], float(self.base_cfg.bearing.Lwe))
+            records = [r for _, r in runs]
+            self.references[label] = Reference(label, str(name), cfgs, [d for d, _ in runs], records,
+                                               self.summary(records))
+        trb = self.references["reference TRB"].records
+        self.limits = Limits.from_config(self.study, [r["values"] for r in trb], float(self.base_cfg.bearing.Lwe),
+                                         self.cycle)
         return self.references
+
+    def summary(self, records):
+        """One record for a design's per-case ``records``: status (studies.evaluate.worst_status),
+        the messages of the cases without result (named by case when the cycle has several), the
+        total wall time, the first case's attrs and the cycle's values (studies.cycle.summary_values)."""
+        several = len(records) > 1
+        message = "; ".join(f"{self.cycle.label(k)}: {r['message']}" if several else r["message"]
+                            for k, r in enumerate(records) if r["message"])
+        return {"status": worst_status([r["status"] for r in records]), "message": message,
+                "values": summary_values(case_values(records), self.cycle, self.objective),
+                "attrs": next((r["attrs"] for r in records if r["attrs"]), {}),
+                "wall_time": float(sum(r["wall_time"] for r in records))}
 
     # ------------------------------------------------------------------ training data
     def config_attrs(self):
@@ -165,13 +216,13 @@ class DesignSearch:
         """Write the loop's points ``ds`` and the local stage's (:meth:`refine`) to training.nc."""
         if self._refined is not None and self._refined.sizes["design"]:
             ds = xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")
-        write_netcdf_atomic(table_to_file(ds, self.base_cfg.load), self.training_path)
+        write_netcdf_atomic(table_to_file(ds), self.training_path)
 
     def simulate(self, X, source, round_index):
-        """Full simulations of the rows of X -> points dataset."""
+        """Full simulations of the rows of X at every case of the duty cycle -> points dataset."""
         points = [self.space.bearing_values(x) for x in X]
-        records = evaluate_designs(self.base_cfg, points, self.quantities, int(self.study.n_jobs))
-        return points_dataset(self.space, X, records, source, round_index, self.attrs())
+        records = evaluate_designs(self.case_cfgs, points, self.quantities, int(self.study.n_jobs))
+        return points_dataset(self.space, X, records, source, round_index, self.attrs(), self.cycle)
 
     def initial_design(self):
         """Load the training data, or simulate the space-filling design and save it.
@@ -204,16 +255,26 @@ class DesignSearch:
             self.save_training(ds)
             self.log(f"initial design: {ds.sizes['design']} of {len(X)} simulated")
         counts = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
-        self.log(f"initial design: {len(X) - done} {d.method} simulations in {time.perf_counter() - t0:.1f} s {counts}")
+        self.log(f"initial design: {self.count(len(X) - done, str(d.method))} in {time.perf_counter() - t0:.1f} s {counts}")
         return ds
 
+    def count(self, n, kind=""):
+        """'n [kind] simulations', or in a duty cycle 'n [kind] designs x m cases' (for the log)."""
+        kind = f"{kind} " if kind else ""
+        return f"{n} {kind}simulations" if len(self.cycle) == 1 else f"{n} {kind}designs x {len(self.cycle)} cases"
+
     # ------------------------------------------------------------------ judging simulated points
+    def objective_values(self, ds):
+        """The cycle objective (n,) of simulated points: the time-weighted mean of the per-case
+        objective (studies.cycle.DutyCycle.weighted; one case: its value); NaN without result."""
+        return self.cycle.weighted(ds[self.objective].transpose("design", "case").values)
+
     def point_margins(self, ds):
-        """Constraint margins (n, m) of simulated points, from their results."""
+        """Constraint margins (n, m) of simulated points, from their results at every case."""
         out = []
         for i in range(ds.sizes["design"]):
             p = ds.isel(design=i)
-            values = {k: float(p[k]) for k in ("pmax", "axial_displacement", "C_eff", EDGE_MARGIN)}
+            values = {k: p[k].values for k in ("pmax", "axial_displacement", "C_eff", EDGE_MARGIN)}
             bearing = {k: float(p[k]) for k in ("PCR", "ratings_alpha")}
             out.append(margins(values, bearing, self.limits, 0.0 if int(p.status) == STATUS["ok"] else FAILED))
         return np.array(out).reshape(len(out), len(self.limits.names))
@@ -222,24 +283,37 @@ class DesignSearch:
         """Index and rank key of the best simulated point (None, None for no points)."""
         if ds.sizes["design"] == 0:
             return None, None
-        keys = [rank_key(v, m) for v, m in zip(ds[self.objective].values, self.point_margins(ds))]
+        keys = [rank_key(v, m) for v, m in zip(self.objective_values(ds), self.point_margins(ds))]
         i = min(range(len(keys)), key=keys.__getitem__)
         return i, keys[i]
 
     # ------------------------------------------------------------------ surrogates
-    def modelled(self):
-        """Outputs with a surrogate: objective, constrained quantities and the convergence label."""
-        names = [self.objective, "pmax", "axial_displacement", "C_eff"]
-        if self.limits.edge_stress:
-            names.append(EDGE_MARGIN)
-        return tuple(dict.fromkeys(names))
+    def model_name(self, quantity, k):
+        """Name of the surrogate of ``quantity`` at case k: the quantity itself for a one-case study,
+        ``<quantity>_case<k>`` in a duty cycle (one set of constraint surrogates per case)."""
+        return quantity if len(self.cycle) == 1 else f"{quantity}_case{k}"
+
+    def constrained(self):
+        """Per-case outputs whose surrogates carry constraints."""
+        return (*CONSTRAINED, *((EDGE_MARGIN,) if self.limits.edge_stress else ()))
 
     def training_sets(self, ds):
-        """(X, y, log, units) per modelled output, from the points with results."""
+        """(X, y, log, units) per modelled output, from the points with results: the cycle objective
+        (key: the objective's name) and each constrained output at each case (:meth:`model_name`)."""
         X = design_matrix(ds, self.space)
         ok = ds.status.values == STATUS["ok"]
         log_outputs = set(self.study.surrogate.log_outputs)
-        return {q: (X[ok], ds[q].values[ok], q in log_outputs, ds[q].attrs.get("units", "1")) for q in self.modelled()}
+
+        def units(q):
+            return ds[q].attrs.get("units", "1")
+
+        sets = {self.objective: (X[ok], self.objective_values(ds)[ok], self.objective in log_outputs,
+                                 units(self.objective))}
+        for k in range(len(self.cycle)):
+            for q in self.constrained():
+                sets.setdefault(self.model_name(q, k), (X[ok], ds[q].transpose("design", "case").values[ok, k],
+                                                        q in log_outputs, units(q)))
+        return sets
 
     def success_set(self, ds):
         """(X, success) of the points that were simulated: impossible geometries are known without a
@@ -285,11 +359,14 @@ class DesignSearch:
         for the acquisition (the simulation margin is the classifier's, PCR_over_Lwe is exact:
         :meth:`admissible`)."""
         L = self.limits
-        out = [Constraint("axial_displacement", -L.axial_displacement_max, L.axial_displacement_max),
-               Constraint("pmax", high=L.pmax_max),
-               Constraint("C_eff", low=lambda X: L.C_eff_min(self.space.ratings_alpha(X)))]
-        if L.edge_stress:
-            out.append(Constraint(EDGE_MARGIN, high=0.0))
+        out = []
+        for k in range(len(self.cycle)):
+            out += [Constraint(self.model_name("axial_displacement", k), -L.axial_displacement_max,
+                               L.axial_displacement_max),
+                    Constraint(self.model_name("pmax", k), high=L.pmax_max[k]),
+                    Constraint(self.model_name("C_eff", k), low=lambda X: L.C_eff_min(self.space.ratings_alpha(X)))]
+            if L.edge_stress:
+                out.append(Constraint(self.model_name(EDGE_MARGIN, k), high=0.0))
         return out
 
     def admissible(self, x):
@@ -308,7 +385,7 @@ class DesignSearch:
         if i is not None:
             centre = design_matrix(ok, self.space)[i]
             if key[0] == 0:
-                value = float(ok[self.objective].values[i])
+                value = float(self.objective_values(ok)[i])
                 incumbent = np.log(value) if models[self.objective].log else value
         regression = {k: m for k, m in models.items() if k != SUCCESS}
         X, _ = propose(regression, self.objective, self.constraint_set(), models[SUCCESS], incumbent, centre,
@@ -326,14 +403,15 @@ class DesignSearch:
         """
         x = self.space.suggest(trial)
         bearing = self.space.bearing_values(x)
-        record = evaluate_design(self.base_cfg, bearing, self.quantities)
+        records = [evaluate_design(cfg, bearing, self.quantities) for cfg in self.case_cfgs]
+        record = self.summary(records)
         ok = record["status"] == "ok"
         value = record["values"][self.objective]
         if not ok:
             seen = [t.value for t in complete_trials(trial.study)] + \
                 [r.record["values"][self.objective] for r in self.references.values()]
             value = float(np.nanmax(seen))
-        return value, margins(record["values"], bearing, self.limits, 0.0 if ok else FAILED), \
+        return value, margins(case_values(records), bearing, self.limits, 0.0 if ok else FAILED), \
             {"status": record["status"], "message": record["message"], "values": record["values"],
              "wall_time": record["wall_time"]}
 
@@ -370,9 +448,9 @@ class DesignSearch:
                 self.save_training(ds)
                 done = self._refined.sizes["design"]
                 self.log(f"local stage: simulation {done} of at most {n_max - 1}: "
-                         f"{self.objective} {float(p[self.objective].values[0]):.6g} ({STATUS_NAMES[int(p.status.values[0])]})")
+                         f"{self.objective} {float(self.objective_values(p)[0]):.6g} ({STATUS_NAMES[int(p.status.values[0])]})")
             ok = int(p.status.values[0]) == STATUS["ok"]
-            return (float(p[self.objective].values[0]) if ok else np.nan), self.point_margins(p)[0]
+            return (float(self.objective_values(p)[0]) if ok else np.nan), self.point_margins(p)[0]
 
         u0 = self.space.unit(design_matrix(ds, self.space)[i])[0]
         self.local = local_refine(evaluate, u0, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
@@ -410,7 +488,7 @@ class DesignSearch:
             i, after = self.best(ds)
             stale = 0 if improved(before, after, float(b.min_improvement)) else stale + 1
             state = "feasible" if after[0] == 0 else "infeasible, violation"
-            self.log(f"round {r}: {ds.sizes['design']} simulations; best #{i} ({state} {after[1]:.6g})")
+            self.log(f"round {r}: {self.count(ds.sizes['design'])}; best #{i} ({state} {after[1]:.6g})")
             if stale >= int(b.patience):
                 reason = f"verified best not improved for {stale} rounds"
                 break

@@ -48,22 +48,31 @@ def remove_if_empty(folders):
 def _reference_failure(search, study):
     """Message naming the load case when a reference simulation gave no result ('' otherwise)."""
     for label, ref in search.references.items():
-        if ref.record["status"] != "ok":
-            load = ", ".join(f"{key} = {float(study.load[key])!r}" for key in LOAD_KEYS)
-            return (f"the {label} {ref.bearing} gives no result at the study's load case study.load ({load}): "
-                    f"{ref.record['status']}: {ref.record['message']}; choose another study.load")
+        for k, record in enumerate(ref.records):
+            if record["status"] == "ok":
+                continue
+            case = search.cycle.cases[k]
+            where, key = ((f"case {k} of study.duty_cycle", f"study.duty_cycle[{k}]") if study.get("duty_cycle")
+                          else ("the study's load case study.load", "study.load"))
+            load = ", ".join(f"{name} = {case[name]!r}" for name in LOAD_KEYS)
+            return (f"the {label} {ref.bearing} gives no result at {where} ({load}): "
+                    f"{record['status']}: {record['message']}; choose another {key}")
     return ""
 
 
-def prepared_search(overrides, log):
+def prepared_search(overrides, log, one_case=None):
     """The design search of the command-line ``overrides`` with its references simulated and its
     limits set: (search, folders it created). Every input is checked before anything is written;
     a refusal after that (from the references: their load case named) removes the folders it
-    made, so a refused command leaves nothing behind. Raises one of :data:`STUDY_ERRORS`."""
+    made, so a refused command leaves nothing behind. ``one_case``: the name of a command that
+    runs one load case, which refuses a duty cycle (DesignSearch.require_one_case) before any
+    simulation. Raises one of :data:`STUDY_ERRORS`."""
     cfg = compose(overrides)
     new = new_folders(output_dir(cfg.study))
     try:
         search = DesignSearch(cfg, overrides, log=log)
+        if one_case is not None:
+            search.require_one_case(one_case)
         try:
             search.run_references()
         except StudyConfigError as err:

@@ -370,7 +370,7 @@ def main(argv=None):
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     log = elapsed_log()
     try:
-        search, _ = prepared_search(args.overrides, log)
+        search, _ = prepared_search(args.overrides, log, one_case="python -m studies.pareto")
     except STUDY_ERRORS as err:
         return refused(err)
     out = search.out / "pareto"

@@ -9,18 +9,23 @@ Writes into the study folder:
 - ``report.md``: the comparison with the reference TRB and the thesis design, and the
   cross-validation of the final surrogates (also printed).
 """
+import textwrap
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
 
 from sim.io import write_netcdf_atomic  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
-from studies.evaluate import STATUS, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
+from studies.cycle import DutyCycle  # noqa: E402
+from studies.evaluate import STATUS, case_values, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
 from surrogate import cross_validate_outputs  # noqa: E402
 
 COLUMNS = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "edge_stress")
+TITLE_WIDTH = 90   # characters of a figure title line at fontsize 8-9 on the 7-10 inch wide figures here
 
 
 def verified_dataset(search, ds):
@@ -43,7 +48,7 @@ def comparison_rows(search, best):
         bearing = ref.cfg.bearing
         m = None
         if str(bearing.type) == "TSRB":
-            m = margins(ref.record["values"], {"PCR": float(bearing.PCR), "ratings_alpha": float(bearing.ratings_alpha)},
+            m = margins(case_values(ref.records), {"PCR": float(bearing.PCR), "ratings_alpha": float(bearing.ratings_alpha)},
                         search.limits, 0.0 if ref.record["status"] == "ok" else 1.0)
         rows.append((f"{ref.label} {ref.bearing}", ref.record, m))
     return rows
@@ -57,10 +62,17 @@ def cross_validation(search, ds):
 
 
 def load_case_label(study):
-    """The study's load case in words for titles: 'Fa 35 kN, Fr 0 kN, 1100 rpm, tilt 0 deg, 50 degC'."""
+    """The study's load case in words for titles: 'Fa 35 kN, Fr 0 kN, 1100 rpm, tilt 0 deg, 50 degC',
+    or its duty cycle: 'duty cycle Fa/Fr/speed/share: 60/0 kN 550 rpm 0.1; ...; tilt 0 deg, 50 degC'."""
     L = study.load
-    return (f"Fa {float(L.Fa) / 1e3:g} kN, Fr {float(L.Fr) / 1e3:g} kN, {float(L.speed):g} rpm, "
-            f"tilt {float(L.tilt):g} deg, oil {float(L.oil_temperature):g} degC")
+    if not study.get("duty_cycle"):
+        return (f"Fa {float(L.Fa) / 1e3:g} kN, Fr {float(L.Fr) / 1e3:g} kN, {float(L.speed):g} rpm, "
+                f"tilt {float(L.tilt):g} deg, oil {float(L.oil_temperature):g} degC")
+    cycle = DutyCycle.from_config(study)
+    cases = "; ".join(f"{c['Fa'] / 1e3:g}/{c['Fr'] / 1e3:g} kN {c['speed']:g} rpm {w:g}"
+                      for c, w in zip(cycle.cases, cycle.share))
+    return (f"duty cycle Fa/Fr, speed, share: {cases}; tilt {cycle.cases[0]['tilt']:g} deg, "
+            f"oil {cycle.cases[0]['oil_temperature']:g} degC")
 
 
 def ratio_in_words(name, value, reference_label, reference_value):
@@ -73,11 +85,16 @@ def ratio_in_words(name, value, reference_label, reference_value):
 
 
 # ---------------------------------------------------------------------------- plots
+def wrapped(label):
+    """A title line broken to the width of a figure (a duty cycle's label is long)."""
+    return textwrap.fill(label, TITLE_WIDTH)
+
+
 def plot_history(search, vds, refs, path):
     """Objective of every full simulation in run order; running best feasible; references (an
     infeasible TSRB reference, e.g. the thesis design under the study's constraints, is marked)."""
     obj = search.objective
-    y = vds[obj].values
+    y = search.objective_values(vds)
     feas = vds.feasible.values
     n = np.arange(1, len(y) + 1)
     fig, ax = plt.subplots(figsize=(7, 4))
@@ -92,9 +109,11 @@ def plot_history(search, vds, refs, path):
             infeasible = m is not None and violation(m) > 0.0
             ax.axhline(record["values"][obj], color=f"C{i + 1}", ls=":" if infeasible else "--", lw=1,
                        label=f"{label} (INFEASIBLE here)" if infeasible else label)
-    ax.set_xlabel("full simulation")
-    ax.set_ylabel(f"{obj} [{vds[obj].attrs.get('units', '')}]")
-    ax.set_title(f"{search.study.name}: optimisation history\n{load_case_label(search.study)}", fontsize=9)
+    several = len(search.cycle) > 1
+    ax.set_xlabel(f"full simulation{' (a design at every case)' if several else ''}")
+    ax.set_ylabel(f"{obj}{', time-weighted' if several else ''} "
+                  f"[{vds[obj].attrs.get('units', '')}]")
+    ax.set_title(f"{search.study.name}: optimisation history\n{wrapped(load_case_label(search.study))}", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=120)
@@ -193,27 +212,77 @@ def local_stage_text(search):
     return " ".join(lines)
 
 
+def case_table(search, best_runs):
+    """Per-case results of the verified best beside the reference TRB's (markdown): torque and
+    power loss from the full simulations, pmax against the case's limit, axial displacement, the
+    edge-stress margin and the case's status."""
+    trb = search.references["reference TRB"]
+    lines = ["| case | Fa [N] | Fr [N] | speed [rpm] | share | torque [N*mm] | TRB torque [N*mm] | power loss [W] | "
+             "TRB power loss [W] | pmax [MPa] | pmax limit [MPa] | axial displacement [mm] | edge-stress margin | status |",
+             "|" + " --- |" * 14]
+    for k, (case, share) in enumerate(zip(search.cycle.cases, search.cycle.share)):
+        (ds, record), trb_ds = best_runs[k], trb.datasets[k]
+
+        def result(d, q):
+            return float(d[q].isel(design=0, case=0)) if d is not None and q in d else np.nan
+
+        v = record["values"]
+        lines.append(f"| {k} | {case['Fa']:g} | {case['Fr']:g} | {case['speed']:g} | {share:g} | "
+                     f"{_fmt(result(ds, 'torque'))} | {_fmt(result(trb_ds, 'torque'))} | {_fmt(result(ds, 'power_loss'))} | "
+                     f"{_fmt(result(trb_ds, 'power_loss'))} | {_fmt(v['pmax'])} | {_fmt(search.limits.pmax_max[k])} | "
+                     f"{_fmt(v['axial_displacement'])} | {_fmt(v['edge_stress_margin'])} | {record['status']} |")
+    return "\n".join(lines)
+
+
+def resimulation_text(search, ds, i, best_record):
+    """The verified best simulated once more at every case: its objective against the stored one."""
+    stored = float(search.objective_values(ds)[i])
+    again = float(best_record["values"].get(search.objective, np.nan))
+    cases = f" at all {len(search.cycle)} cases" if len(search.cycle) > 1 else ""
+    same = "identical" if again == stored else f"relative difference {again / stored - 1.0:+.2e}"
+    return (f"Re-simulated{cases} for this report: {search.objective} {again:.6g} against {stored:.6g} stored "
+            f"({same}); status {best_record['status']}.")
+
+
+def life_text(search, best_record):
+    """The rating life over the cycle in words: P_eq and L10 of the verified best and of the reference TRB."""
+    trb = search.references["reference TRB"]
+    parts = [f"{label}: P_eq = {_fmt(r['values'].get('P'))} N, L10 = {_fmt(r['values'].get('L10'))} 1e6 rev"
+             for label, r in (("verified best", best_record), (f"reference TRB {trb.bearing}", trb.record))]
+    return ("Rating life over the cycle (equivalent dynamic load P_eq = (sum share n P^p / sum share n)^(1/p), "
+            "p = 10/3, ISO 281 / Harris & Kotzalas 2007; L10 = (least C_eff / P_eq)^p): " + "; ".join(parts) + ".")
+
+
 def write_report(search, ds, reason):
     """Write the report files of a finished search; returns the report text (markdown)."""
     out = search.out
     vds = verified_dataset(search, ds)
-    write_netcdf_atomic(table_to_file(vds, search.base_cfg.load), out / "verified.nc")
+    write_netcdf_atomic(table_to_file(vds), out / "verified.nc")
     i, key = search.best(ds)
     x = design_matrix(ds, search.space)[i]
     bearing = search.space.bearing_values(x)
-    best_ds, best_record = simulate_point(design_config(search.base_cfg, bearing), search.quantities)
-    if best_ds is not None:
-        write_netcdf_atomic(best_ds, out / "best_design.nc")
-    best_m = margins(best_record["values"], bearing, search.limits, 0.0 if best_record["status"] == "ok" else 1.0)
+    best_runs = [simulate_point(design_config(cfg, bearing), search.quantities) for cfg in search.case_cfgs]
+    best_records = [r for _, r in best_runs]
+    results = [d for d, _ in best_runs]
+    if all(d is not None for d in results):
+        write_netcdf_atomic(results[0] if len(results) == 1 else
+                            xr.concat(results, dim="case", data_vars="minimal", coords="minimal", compat="override",
+                                      combine_attrs="override"), out / "best_design.nc")
+    best_record = search.summary(best_records)
+    best_m = margins(case_values(best_records), bearing, search.limits, 0.0 if best_record["status"] == "ok" else 1.0)
     rows = comparison_rows(search, ("verified best", best_record, best_m))
     attrs = {q: ds[q].attrs for q in ds.data_vars}
     cv = cross_validation(search, ds)
     plot_history(search, vds, rows[1:], out / "history.png")
     label = load_case_label(search.study)
     plot_parity(cv, {q: a.get("units", "1") for q, a in attrs.items()}, out / "parity.png", label)
-    plot_pressure([("verified best", best_ds)] + [(f"{r.label} {r.bearing}", r.ds) for r in search.references.values()],
-                  out / "pressure.png", label)
+    # the pressure of the case with the largest axial load (the only one of a one-case study)
+    k = int(np.argmax(search.cycle.column("Fa")))
+    plot_pressure([("verified best", results[k])] + [(f"{r.label} {r.bearing}", r.datasets[k])
+                                                    for r in search.references.values()],
+                  out / "pressure.png", label if len(search.cycle) == 1 else f"case {k}: {search.cycle.label(k)}")
     s = search.study
+    several = len(search.cycle) > 1
     n_by = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
     feasible = "feasible" if key[0] == 0 else f"NO FEASIBLE DESIGN FOUND (least violation {key[1]:.4g})"
     params = ", ".join(f"{k} = {bearing[k]:.4g}" for k in (*search.space.names, "ratings_alpha"))
@@ -222,23 +291,40 @@ def write_report(search, ds, reason):
     words = [ratio_in_words(obj, best_record["values"].get(obj, np.nan), f"{r.label} {r.bearing}",
                             r.record["values"].get(obj, np.nan)) for r in search.references.values()]
     words = "; ".join(w for w in words if w)
+    pmax_limits = "/".join(f"{v:.1f}" for v in search.limits.pmax_max)
+    if several:
+        load_text = (f"Duty cycle of {len(search.cycle)} load cases (table below; tilt {s.load.tilt:g} deg, oil "
+                     f"{s.load.oil_temperature:g} degC); objective `{obj}` time-weighted over the cycle "
+                     f"(sum of share x per-case value, minimised), constraints at every case, L10 over the cycle from "
+                     f"the ISO 281 equivalent load (studies.cycle)")
+    else:
+        load_text = (f"Load case Fa = {s.load.Fa:g} N, Fr = {s.load.Fr:g} N, {s.load.speed:g} rpm, tilt {s.load.tilt:g} deg; "
+                     f"objective `{obj}` (minimised)")
     text = "\n".join([
-        f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}",
+        f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}" +
+        (f" over the {load_case_label(s)}" if several else ""),
         "",
-        f"Load case Fa = {s.load.Fa:g} N, Fr = {s.load.Fr:g} N, {s.load.speed:g} rpm, tilt {s.load.tilt:g} deg; "
-        f"objective `{search.objective}` (minimised); constrained Bayesian optimisation, "
+        f"{load_text}; constrained Bayesian optimisation, "
         f"{s.budget.verify_per_round} designs a round; surrogate intervals "
         f"{'calibrated' if s.surrogate.calibrate else 'not calibrated'}.",
         f"Limits: |axial displacement| <= {search.limits.axial_displacement_max:g} mm, "
-        f"pmax <= {search.limits.pmax_max:.1f} MPa, L10 >= {search.limits.L10_min:.4g} 1e6 rev, "
-        f"edge stress {'forbidden' if search.limits.edge_stress else 'allowed'}, "
+        f"pmax <= {pmax_limits} MPa{' (per case)' if several else ''}, L10 >= {search.limits.L10_min:.4g} 1e6 rev"
+        f"{' (over the cycle)' if several else ''}, edge stress {'forbidden' if search.limits.edge_stress else 'allowed'}, "
         f"PCR/Lwe <= {search.limits.PCR_over_Lwe_max:g}.",
-        f"Full simulations: {ds.sizes['design']} ({n_by}); stopped: {reason}.",
+        f"Full simulations: {ds.sizes['design']}{f' designs x {len(search.cycle)} cases' if several else ''} ({n_by}); "
+        f"stopped: {reason}.",
         "",
         f"Verified best ({feasible}), simulation #{i}: {params}",
         "",
-        *([f"The verified best has its {words}.", ""] if words else []),
+        resimulation_text(search, ds, i, best_record),
+        "",
+        *([f"The verified best has{' over the duty cycle' if several else ''} its {words}.", ""] if words else []),
+        *([life_text(search, best_record), ""] if several else []),
         *([local, ""] if local else []),
+        *([f"## Duty cycle: {load_case_label(s)}", "", "Verified best at every case, beside the reference TRB "
+           f"{s.reference_trb} (full simulations):", "", case_table(search, best_runs), "",
+           "Cycle values (table below): objective time-weighted, pmax and edge stress the worst case, C_eff the least, "
+           "L10 over the cycle.", ""] if several else []),
         comparison_table(search, rows, attrs),
         "",
         f"Surrogate cross-validation ({s.surrogate.cv_folds}-fold, {100 * s.surrogate.interval:g} % intervals, "

@@ -192,7 +192,7 @@ def verified_points(search, trials, attrs=None):
     done = sorted((t for t in trials if t.state == TrialState.COMPLETE), key=lambda t: t.user_attrs["slot"])
     names = search.space.names
     X = np.array([search.space.from_params(t.params) for t in done]).reshape(len(done), len(names))
-    ds = points_dataset(search.space, X, [t.user_attrs["record"] for t in done], "initial", 0, attrs or {})
+    ds = points_dataset(search.space, X, [[t.user_attrs["record"]] for t in done], "initial", 0, attrs or {}, search.cycle)
     n0 = int(search.study.initial_design.n)
     source = [t.user_attrs.get("source", "verification") for t in done]
     rounds = np.array([0 if s == "initial" else t.user_attrs["slot"] - n0 + 1 for s, t in zip(source, done)],
@@ -223,6 +223,7 @@ class Workers:
 
     def __init__(self, root_cfg, overrides=(), index=0, out_dir=None, log=print):
         self.search = DesignSearch(root_cfg, overrides, out_dir=out_dir, log=log)
+        self.search.require_one_case("python -m studies.workers")
         self.study = root_cfg.study
         self.index = int(index)
         self.log = log
