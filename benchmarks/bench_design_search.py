@@ -81,7 +81,7 @@ class Trace:
 def point_values(search, part):
     """(objective or NaN, margins) of each point of a points dataset."""
     M = search.point_margins(part)
-    f = np.where(part.status.values == STATUS["ok"], part[search.objective].values, np.nan)
+    f = np.where(part.status.values == STATUS["ok"], search.objective_values(part), np.nan)
     return f, M
 
 

@@ -86,7 +86,7 @@ class PointStore:
     def _add(self, part):
         ds = part if self.ds is None else xr.concat([self.ds, part], dim="design", combine_attrs="override",
                                                     data_vars="all")
-        write_netcdf_atomic(table_to_file(ds, self.search.base_cfg.load), self.path)
+        write_netcdf_atomic(table_to_file(ds), self.path)
         self._set(ds)
 
     def simulate(self, X, source):
@@ -99,14 +99,14 @@ class PointStore:
         """(objective (NaN without result), margins) of the stored point x."""
         p = self.ds.isel(design=[self.index[np.asarray(x, dtype=float).tobytes()]])
         ok = int(p.status.values[0]) == STATUS["ok"]
-        return (float(p[self.search.objective].values[0]) if ok else np.nan), self.search.point_margins(p)[0]
+        return (float(self.search.objective_values(p)[0]) if ok else np.nan), self.search.point_margins(p)[0]
 
     def ranked(self, X):
         """(X, objectives, margins) of the stored points among the rows of ``X``, best first by rank_key."""
         ds = self.ds.isel(design=sorted({self.index[x.tobytes()] for x in X}))
         X = design_matrix(ds, self.search.space)
         M = self.search.point_margins(ds)
-        f = np.where(ds.status.values == STATUS["ok"], ds[self.search.objective].values, np.nan)
+        f = np.where(ds.status.values == STATUS["ok"], self.search.objective_values(ds), np.nan)
         order = sorted(range(len(X)), key=lambda i: rank_key(f[i], M[i]))
         return X[order], f[order], M[order]
 
@@ -186,6 +186,8 @@ def run(search, n_sobol, seed, n_starts, max_per_start, log):
         "objective": search.objective,
         "objective_units": str(store.ds[search.objective].attrs.get("units", "")),
         "load_case": {k: float(search.study.load[k]) for k in search.study.load},
+        "duty_cycle": (None if search.study.get("duty_cycle") is None
+                       else OmegaConf.to_container(search.study.duty_cycle, resolve=True)),
         "feasible": bool(feasible),
         "value": best_f,
         "design": {n: float(v) for n, v in zip(space.names, best_x)},

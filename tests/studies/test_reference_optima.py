@@ -11,8 +11,8 @@ import xarray as xr
 from omegaconf import OmegaConf
 
 from studies.config import compose
-from studies.constraints import margins, rank_key, violation
-from studies.evaluate import STATUS, evaluate_design, table_from_file
+from studies.constraints import rank_key, violation
+from studies.evaluate import STATUS, table_from_file
 from studies.loop import DesignSearch
 from studies.reference_optimum import POLISH_ROUNDS, main
 
@@ -41,12 +41,11 @@ def stored_search(path, tmp_path):
 
 
 def judge(search, x):
-    """(objective, margins) of the design at x (free parameters in space order)."""
-    bearing = search.space.bearing_values(x)
-    record = evaluate_design(search.base_cfg, bearing, search.quantities)
-    ok = record["status"] == "ok"
-    return (float(record["values"][search.objective]) if ok else np.nan,
-            margins(record["values"], bearing, search.limits, 0.0 if ok else 1.0))
+    """(objective, margins) of the design at x (free parameters in space order), by the study's
+    own evaluation (every case of its duty cycle)."""
+    part = search.simulate(np.asarray(x, dtype=float)[None, :], "probe", 0)
+    ok = int(part.status.values[0]) == STATUS["ok"]
+    return (float(search.objective_values(part)[0]) if ok else np.nan), search.point_margins(part)[0]
 
 
 def test_reference_optima_are_stored_for_both_shipped_studies():
@@ -102,7 +101,7 @@ def test_reference_run_takes_the_best_point_and_resumes_without_simulating(tmp_p
     search.run_references()
     table = table_from_file(xr.load_dataset(points))
     M = search.point_margins(table)
-    f = np.where(table.status.values == STATUS["ok"], table[search.objective].values, np.nan)
+    f = np.where(table.status.values == STATUS["ok"], search.objective_values(table), np.nan)
     best = min(range(len(f)), key=lambda i: rank_key(f[i], M[i]))
     assert first["design"] == {n: float(table[n].values[best]) for n in search.space.names}
 
