@@ -230,8 +230,10 @@ def summary(runs, reference, out):
         ax.axhline(100 * g, color="0.4", lw=0.8, ls="--")
     ax.set_yscale("log")
     ax.set_xlabel("full simulations [1]")
-    ax.set_ylabel("gap of the best feasible design to the reference optimum [%]")
-    ax.set_title(f"{reference[3]}: best feasible so far (band: quartiles over seeds)", fontsize=9)
+    ax.set_ylabel("gap of the best feasible design to the reference optimum [%]\n(1000 %: no feasible design yet)",
+                  fontsize=9)
+    ax.set_title(f"{reference[3]}\nbest feasible design so far (line: median, band: quartiles over seeds)",
+                 fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
     fig.savefig(out / "convergence.png", dpi=120)
@@ -264,7 +266,8 @@ def main(argv=None):
         print(f"error: {path} is an optimum of {stored.objective}, the study minimises {cfg.study.objective}",
               file=sys.stderr)
         return 2
-    load = ", ".join(f"{k} {float(v):g}" for k, v in stored.load_case.items())
+    units = {"Fa": "N", "Fr": "N", "speed": "rpm", "tilt": "deg", "oil_temperature": "degC"}
+    load = ", ".join(f"{k} {float(v):g} {units[k]}" for k, v in stored.load_case.items())
     reference = (float(stored.value), str(stored.objective_units), str(stored.objective), f"study {name}, {load}")
     n0 = int(cfg.study.initial_design.n)
     out = REPO / "outputs" / "benchmarks" / "design_search" / name
