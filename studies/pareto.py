@@ -41,7 +41,7 @@ from matplotlib.figure import Figure
 
 from sim.api import simulate_batch
 from sim.io import write_netcdf_atomic
-from studies.config import PARETO_OBJECTIVES, storage_spec
+from studies.config import DESIGN_PARAMETERS, PARETO_OBJECTIVES, storage_spec
 from studies.constraints import FAILED, margins, rank_key
 from studies.evaluate import RECORDED, design_config, evaluate_design
 from studies.optimize import STUDY_ERRORS, prepared_search, refused
@@ -261,7 +261,7 @@ class ParetoFront:
         if idx.size:
             front[idx[non_dominated(F[idx], self.directions)]] = True
         return xr.Dataset(
-            {n: ("point", X[:, j], {"units": PARAM_UNITS[n]}) for j, n in enumerate(s.space.names)}
+            {n: ("point", X[:, j], {"units": DESIGN_PARAMETERS[n][0]}) for j, n in enumerate(s.space.names)}
             | {p: ("point", F[:, j], {"units": OBJECTIVES[p][2], "long_name": OBJECTIVES[p][1]})
                for j, p in enumerate(self.pair)}
             | {"margin": (("point", "constraint"), M, {"units": "1", "long_name": "normalised margin, <= 0 feasible"}),
@@ -269,9 +269,6 @@ class ParetoFront:
                "stage": ("point", stage, {"long_name": "nsga2 or epsilon_constraint"}),
                "on_front": ("point", front, {"long_name": "feasible and non-dominated among all points"})},
             coords={"point": np.arange(len(stage)), "constraint": self.margin_names})
-
-
-PARAM_UNITS = {"PCR": "mm", "kappa": "1", "aP": "mm", "aPk": "mm", "alpha": "deg"}
 
 
 def reference_point(front, label):

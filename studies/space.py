@@ -18,7 +18,9 @@ class DesignSpace:
     low, high : ndarray
         Their bounds [mm for PCR, aP, aPk; 1 for kappa; deg for alpha].
     template : dict
-        Values of all :data:`DESIGN_PARAMETERS` (and ``ratings_alpha``) in the template bearing.
+        Values of all :data:`DESIGN_PARAMETERS` (and ``ratings_alpha``) in the template bearing;
+        a per-point osculation that the template leaves null (it follows kappa) stays None unless
+        free, where it starts at the template's kappa, its value in the template.
     """
 
     names: tuple
@@ -31,7 +33,9 @@ class DesignSpace:
         """From ``study.free``/``study.bounds`` and the composed template ``bearing`` node."""
         names = tuple(str(n) for n in study.free)
         bounds = np.array([[float(v) for v in study.bounds[n]] for n in names])
-        template = {k: float(template_bearing[k]) for k in (*DESIGN_PARAMETERS, "ratings_alpha")}
+        values = {k: template_bearing[k] for k in (*DESIGN_PARAMETERS, "ratings_alpha")}
+        values.update({k: template_bearing["kappa"] for k in names if values[k] is None})
+        template = {k: None if v is None else float(v) for k, v in values.items()}
         return cls(names, bounds[:, 0], bounds[:, 1], template)
 
     @property
@@ -65,6 +69,11 @@ class DesignSpace:
         if "alpha" in self.names:
             values["ratings_alpha"] = values["alpha"]
         return values
+
+    def include(self, points):
+        """Design matrix (n, d) of the designs ``points`` (name: value mappings holding the free
+        parameters, ``study.initial_design.include``)."""
+        return np.array([[float(p[n]) for n in self.names] for p in points]).reshape(len(points), len(self.names))
 
     def ratings_alpha(self, X):
         """``ratings_alpha`` [deg] of each design of X (n, d), as :meth:`bearing_values` sets it."""
