@@ -18,16 +18,14 @@ from sim.api import GeometryError, InputError
 
 SAMPLERS = ("tpe", "gp", "nsga2")
 #: searchable TSRB parameters (conf/bearing keys, sim.config_schema): name -> (units, long name)
+#: the osculation per contact point and race (thesis 8.2; null or absent in the bearing: kappa)
+POINT_OSCULATIONS = {
+    f"kappa_{race}_{end}": ("1", f"osculation of the {race} raceway at the {end}-end contact point (2.7)")
+    for race in ("outer", "inner") for end in ("small", "large")}
 DESIGN_PARAMETERS = {
     "PCR": ("mm", "profile curve radius of the roller"), "kappa": ("1", "osculation (2.7)"),
     "aP": ("mm", "distance between the contact points"), "aPk": ("mm", "small end face to the first contact point"),
-    "alpha": ("deg", "roller-axis (mean contact) angle"),
-    # per contact point and race (thesis 8.2; null in the bearing: kappa)
-    "kappa_outer_small": ("1", "osculation of the outer raceway at the small-end contact point (2.7)"),
-    "kappa_outer_large": ("1", "osculation of the outer raceway at the large-end contact point (2.7)"),
-    "kappa_inner_small": ("1", "osculation of the inner raceway at the small-end contact point (2.7)"),
-    "kappa_inner_large": ("1", "osculation of the inner raceway at the large-end contact point (2.7)"),
-}
+    "alpha": ("deg", "roller-axis (mean contact) angle"), **POINT_OSCULATIONS}
 DESIGN_METHODS = ("sobol", "lhs")
 MATERN_NU = (0.5, 1.5, 2.5, math.inf)
 LOAD_KEYS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")

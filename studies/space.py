@@ -4,7 +4,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import qmc
 
-from studies.config import DESIGN_PARAMETERS
+from studies.config import DESIGN_PARAMETERS, POINT_OSCULATIONS
 
 
 @dataclass(frozen=True)
@@ -33,9 +33,11 @@ class DesignSpace:
         """From ``study.free``/``study.bounds`` and the composed template ``bearing`` node."""
         names = tuple(str(n) for n in study.free)
         bounds = np.array([[float(v) for v in study.bounds[n]] for n in names])
-        values = {k: template_bearing[k] for k in (*DESIGN_PARAMETERS, "ratings_alpha")}
-        values.update({k: template_bearing["kappa"] for k in names if values[k] is None})
-        template = {k: None if v is None else float(v) for k, v in values.items()}
+        template = {k: float(template_bearing[k]) for k in (*DESIGN_PARAMETERS, "ratings_alpha")
+                    if k not in POINT_OSCULATIONS}
+        for k in POINT_OSCULATIONS:   # null or absent: kappa
+            value = template_bearing.get(k)
+            template[k] = float(value) if value is not None else (template["kappa"] if k in names else None)
         return cls(names, bounds[:, 0], bounds[:, 1], template)
 
     @property
