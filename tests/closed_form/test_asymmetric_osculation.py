@@ -257,3 +257,23 @@ def test_roller_stiffness_uses_the_radius_of_the_bounding_arc():
     scale = np.abs(J).max(axis=0)
     error = np.abs(K - J).max(axis=0) / scale
     assert np.all(error < 1e-4), error
+
+
+@pytest.mark.parametrize("value", [1.0, 0.0, -0.5, 1.2])
+def test_per_point_osculation_outside_its_range_is_refused_before_anything_runs(value):
+    """A per-point osculation outside (0, 1) is refused by the schema, naming key, value and range,
+    through the config (ConfigError) and through Geometry.from_config (GeometryError). No rule that
+    combines keys is needed: any four values in (0, 1) give raceway arcs that contain the crown
+    (R_k >= PCR, internal tangency) and touch it at exactly its two contact points (tests above)."""
+    from omegaconf import OmegaConf
+
+    from sim.errors import ConfigError, GeometryError
+    from sim.geometry import Geometry
+
+    with pytest.raises(ConfigError) as err:
+        sim.simulate(sim.load_config(["bearing=tsrb_reference", f"bearing.kappa_inner_large={value}"]))
+    assert f"bearing.kappa_inner_large = {value!r} is outside the allowed range: a number in (0, 1)" in str(err.value)
+    cfg = sim.load_config(["bearing=tsrb_reference"])
+    bearing = dict(OmegaConf.to_container(cfg.bearing, resolve=True), kappa_inner_large=value)
+    with pytest.raises(GeometryError, match=r"bearing.kappa_inner_large = .* is outside the allowed range"):
+        Geometry.from_config(bearing, OmegaConf.to_container(cfg.material, resolve=True), 10)
