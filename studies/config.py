@@ -17,11 +17,11 @@ import sim
 from sim.api import GeometryError, InputError
 
 SAMPLERS = ("tpe", "gp", "nsga2")
-#: searchable TSRB parameters (conf/bearing keys, sim.config_schema): name -> (units, long name)
 #: the osculation per contact point and race (thesis 8.2; null or absent in the bearing: kappa)
 POINT_OSCULATIONS = {
     f"kappa_{race}_{end}": ("1", f"osculation of the {race} raceway at the {end}-end contact point (2.7)")
     for race in ("outer", "inner") for end in ("small", "large")}
+#: searchable TSRB parameters (conf/bearing keys, sim.config_schema): name -> (units, long name)
 DESIGN_PARAMETERS = {
     "PCR": ("mm", "profile curve radius of the roller"), "kappa": ("1", "osculation (2.7)"),
     "aP": ("mm", "distance between the contact points"), "aPk": ("mm", "small end face to the first contact point"),

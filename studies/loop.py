@@ -205,7 +205,8 @@ class DesignSearch:
             self.save_training(ds)
             self.log(f"initial design: {ds.sizes['design']} of {len(X)} simulated")
         counts = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
-        self.log(f"initial design: {len(X) - done} {self.study.initial_design.method} simulations in {time.perf_counter() - t0:.1f} s {counts}")
+        method = self.study.initial_design.method
+        self.log(f"initial design: {len(X) - done} {method} simulations in {time.perf_counter() - t0:.1f} s {counts}")
         return ds
 
     # ------------------------------------------------------------------ judging simulated points

@@ -19,8 +19,8 @@ The tangent stiffness is the exact Jacobian K = -df/dy:
   the slice elasticity on the loaded set) and dQ/dd g g^T for the rib;
 - geometric part: w sum_k q_k H_k with H_k the second derivative of the penetration: the
   raceway curvature (t.dP/dy_a)(t.dP/dy_b)/r_c (t the profile tangent, r_c the radius of the
-  TSRB arc that bounds the slice, PCR (2 - kappa_k); zero for a straight TRB cone) plus n . d2P/dtheta2 = -n.(x u' + y v') of the
-  turning slice point P (and -c_x n.u' for the rib sphere centre).
+  TSRB arc that bounds the slice, PCR (2 - kappa_k); zero for a straight TRB cone) plus
+  n . d2P/dtheta2 = -n.(x u' + y v') of the turning slice point P (and -c_x n.u' for the rib sphere centre).
 
 Kernels share state through named tuples of arrays (STYLE.md): :data:`BearingArrays` (the
 bearing), :data:`ContactFrames` (frames of Z rollers, or of one roller), :data:`RollerContact`
