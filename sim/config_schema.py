@@ -146,6 +146,9 @@ def mm(**options):
 
 
 # ---------------------------------------------------------------------------- bearing
+#: why a per-point osculation (``kappa_<race>_<point>``) lies in (0, 1): eq. (2.7) and the two arcs
+OSCULATION_NOTE = ("osculation of one raceway arc at its contact point, eq. (2.7) per point (thesis 8.2); null: "
+                   "kappa. Below 1 as kappa: at 1 the arc would be the roller crown itself and hide the race's other arc")
 #: why a composite roughness is at least 1 nm
 ROUGHNESS_NOTE = ("below 1 nm a surface is atomically smooth: finished raceways and rollers have Rq of 0.02 um and "
                   "more")
@@ -185,6 +188,14 @@ class BearingConfig:
                         "float64 round-off of circles centred PCR away (1e-16 PCR) grows towards the contact approach")
     kappa: Any = key(Number(0.0, 1.0, True, True), only="TSRB",
                      note="kappa = 1 gives PCR_LB = PCR: no two-point contact")
+    # Osculation of each raceway arc at its own contact point (thesis 8.2 outlook: "a different
+    # osculation value for the two contact points"; thesis 4.1 and Grehn [Gre19]: outer and inner
+    # ring osculations may differ). Null (the default): kappa. Arc radius PCR (2 - kappa_<race>_<point>),
+    # eq. (2.7) per point (sim.geometry.raceway_profile_radius).
+    kappa_outer_small: Any = key(Number(0.0, 1.0, True, True), only="TSRB", optional=True, note=OSCULATION_NOTE)
+    kappa_outer_large: Any = key(Number(0.0, 1.0, True, True), only="TSRB", optional=True, note=OSCULATION_NOTE)
+    kappa_inner_small: Any = key(Number(0.0, 1.0, True, True), only="TSRB", optional=True, note=OSCULATION_NOTE)
+    kappa_inner_large: Any = key(Number(0.0, 1.0, True, True), only="TSRB", optional=True, note=OSCULATION_NOTE)
     r: Any = mm()
     R: Any = mm()
     Z: Any = key(Number(3, integer=True))

@@ -28,7 +28,11 @@ BEARING_KEYS = [f.name for f in fields(BearingConfig)]
 
 # Raceway profile kinds understood by sim.physics.contact.
 RACE_LINE = 0  # straight generatrix (cone): point and unit normal into the ring
-RACE_LENS = 1  # two circular arcs of equal radius whose disks intersect (TSRB, "two intersected tori")
+RACE_LENS = 1  # two circular arcs, each with its own radius, whose disks intersect (TSRB, "two intersected tori")
+
+#: per-point osculation keys of a TSRB (sim.config_schema, thesis 8.2): [race][point], race 0 outer,
+#: 1 inner; point 0 the small-end contact point, 1 the large-end one. Null in the config: kappa.
+OSCULATION_KEYS = (("kappa_outer_small", "kappa_outer_large"), ("kappa_inner_small", "kappa_inner_large"))
 
 
 def taper_angle(alpha, Dwe, Dpw):
@@ -184,6 +188,11 @@ class Geometry:
     # TSRB only (nan for the TRB)
     PCR: float = np.nan
     kappa: float = np.nan
+    #: osculation of each raceway arc at its own contact point [1] (OSCULATION_KEYS; kappa where not configured)
+    kappa_outer_small: float = np.nan
+    kappa_outer_large: float = np.nan
+    kappa_inner_small: float = np.nan
+    kappa_inner_large: float = np.nan
     aP: float = np.nan
     aPk: float = np.nan
     # TRB only (nan for the TSRB)
@@ -220,7 +229,9 @@ class Geometry:
                                 "raceway cones' apex, Dpw / (2 sin(alpha)) from the roller, lies infinitely far")
             err.key, err.rule, err.limit = "bearing.alpha", None, None
             raise err
-        extra = {k: float(b[k]) for k in own}
+        extra = {k: float(b[k]) for k in own if b.get(k) is not None}
+        if kind == "TSRB":  # per-point osculations default to kappa (thesis 8.2; sim.config_schema)
+            extra.update({k: extra["kappa"] for pair in OSCULATION_KEYS for k in pair if k not in extra})
         gamma = taper_angle(alpha, Dwe, Dpw)
         if kind == "TRB":
             extra["ratings_alpha"] = float(np.degrees(alpha + gamma))  # ISO 281: the cup angle
@@ -340,8 +351,19 @@ class Geometry:
 
     @property
     def PCR_LB(self):
-        """Raceway profile curve radius [mm], eq. (2.7)."""
+        """Raceway profile curve radius [mm], eq. (2.7), of the symmetric osculation kappa."""
         return raceway_profile_radius(self.PCR, self.kappa)
+
+    @property
+    def osculations(self):
+        """Osculation of every raceway arc [1], shape (2, 2): [race][point] as OSCULATION_KEYS."""
+        return np.array([[getattr(self, k) for k in pair] for pair in OSCULATION_KEYS])
+
+    @property
+    def arc_radii(self):
+        """Radius of every raceway arc [mm], shape (2, 2) as :attr:`osculations`:
+        PCR (2 - kappa_<race>_<point>), eq. (2.7) applied to each arc at its own contact point."""
+        return raceway_profile_radius(self.PCR, self.osculations)
 
     @property
     def s(self):
@@ -425,7 +447,23 @@ class Geometry:
 
         side = +1 outer, -1 inner. Returns (kind, params[6]):
         RACE_LINE: (r0, z0, nr, nz, 0, 0), point on the line and unit normal into the ring;
-        RACE_LENS: (r1, z1, r2, z2, radius, 0), the two arc centres and PCR_LB.
+        RACE_LENS: (r1, z1, r2, z2, R1, R2), the centres and radii of the small-end and the
+        large-end arc, R_k = PCR (2 - kappa_k) (eq. (2.7) per arc, :attr:`arc_radii`).
+
+        TSRB raceway (MODEL.md 2, thesis 8.2): arc k is the circle of radius R_k >= PCR internally
+        tangent to the roller's crown circle at contact point k, centre c_k = p_k - R_k n_k (p_k the
+        contact point, n_k the crown's outward unit normal there). Each disk |q - c_k| <= R_k holds
+        the whole crown circle (internal tangency, R_k >= PCR), so the cavity the ring leaves for
+        the roller is the intersection of the two disks: the penetration of a point is the larger
+        of its two arc penetrations (sim.physics.contact.race_penetration). The unloaded gap
+        is zero at p_1 and p_2 only and grows as s^2 (1/PCR - 1/R_k) / 2 with the arc length s from
+        p_k. The two arcs meet where their gaps are equal, between the points (near the roller,
+        c_1 (x - x_1)^2 = c_2 (x - x_2)^2 with c_k = 1/PCR - 1/R_k has its one root between x_1 and
+        x_2), in a corner of the profile (a groove in the ring: the relief between the osculation
+        regions of thesis Fig. 4.10 / [Jac92]). A grinding wheel dressed to the two arcs makes
+        exactly this: its profile is the cavity, two convex arcs meeting in a ridge. A profile
+        tangent-continuous where the arcs meet would need a third, blending arc: two circles each
+        fixed by its radius and its tangency at p_k are tangent to each other only when R_1 = R_2.
         """
         a, g = self.alpha, self.gamma
         if self.type == "TRB":
@@ -437,14 +475,15 @@ class Geometry:
             return RACE_LINE, np.array([r0, z0, nr, nz, 0.0, 0.0])
         # TSRB: each raceway arc internally tangent to the roller generatrix at a contact point
         xc, yc = self.crown_centre
+        radii = self.arc_radii[0 if side > 0 else 1]
         centres = []
-        for xk in self.contact_points_x:
+        for xk, Rk in zip(self.contact_points_x, radii):
             yk = float(self.roller_radius(xk))
             nx, ny = (xk - xc) / self.PCR, (yk - yc) / self.PCR  # outward normal of the roller circle
-            cx, cy = xk - self.PCR_LB * nx, yk - self.PCR_LB * ny
+            cx, cy = xk - Rk * nx, yk - Rk * ny
             centres.append(self.to_meridian(cx, side * cy))
         (r1, z1), (r2, z2) = centres
-        return RACE_LENS, np.array([r1, z1, r2, z2, self.PCR_LB, 0.0])
+        return RACE_LENS, np.array([r1, z1, r2, z2, radii[0], radii[1]])
 
     def _equivalent_radii(self, side):
         """Radius of relative curvature in the rolling direction per slice [mm] (Hertz line contact).

@@ -16,9 +16,9 @@ from omegaconf.errors import OmegaConfBaseException
 import sim
 from sim.api import GeometryError, InputError
 from studies.cycle import LOAD_KEYS, DutyCycle
+from studies.space import DESIGN_PARAMETERS
 
 SAMPLERS = ("tpe", "gp", "nsga2")
-DESIGN_PARAMETERS = ("PCR", "kappa", "aP", "aPk", "alpha")
 DESIGN_METHODS = ("sobol", "lhs")
 MATERN_NU = (0.5, 1.5, 2.5, math.inf)
 PARETO_OBJECTIVES = ("power_loss", "L10", "pmax")   # objectives of studies.pareto
@@ -210,6 +210,17 @@ def validate(study):
     _require(_is_int(sur.get("cv_folds"), 2), "surrogate.cv_folds", sur.get("cv_folds"), "an integer >= 2")
     _require(_is_int(d.get("n"), max(2, sur["cv_folds"])), "initial_design.n", d.get("n"),
              f"an integer >= {max(2, sur['cv_folds'])} (at least surrogate.cv_folds points)")
+    include = d.get("include", [])
+    _require(isinstance(include, list), "initial_design.include", include, "a list of designs (name: value mappings)")
+    for k, point in enumerate(include):
+        _require(isinstance(point, dict) and set(free) <= set(point) and set(point) <= set(DESIGN_PARAMETERS),
+                 f"initial_design.include[{k}]", point,
+                 f"a mapping with a value for every free parameter {free} (others of {list(DESIGN_PARAMETERS)} "
+                 "are allowed and ignored, so one design serves several free sets)")
+        for name in free:
+            lo, hi = s["bounds"][name]
+            _require(_is_number(point[name]) and lo <= point[name] <= hi, f"initial_design.include[{k}].{name}",
+                     point[name], f"a number in study.bounds.{name} = [{lo}, {hi}]")
     b = s.get("budget", {})
     _require(_is_int(b.get("max_simulations"), d["n"]), "budget.max_simulations", b.get("max_simulations"),
              f"an integer >= initial_design.n = {d['n']}")

@@ -10,6 +10,7 @@ import xarray as xr
 
 from sim.io import CASE_VARIABLES, case_coords, utc_now
 from sim.api import GeometryError, InputError, OperatingPoint, simulate, worker_pool
+from studies.space import DESIGN_PARAMETERS
 
 # CF flags of the ``status`` variable
 STATUS = {"ok": 0, "not_converged": 1, "geometry_error": 2, "failed": 3}
@@ -23,10 +24,12 @@ EDGE_MARGIN_ATTRS = {"units": "1", "long_name": "edge-stress margin of the most 
 
 
 def design_config(base_cfg, values):
-    """Copy of a composed simulation config with the bearing's design parameters replaced."""
+    """Copy of a composed simulation config with the bearing's design parameters replaced (a None
+    value, a per-point osculation that follows kappa, is left as the template has it)."""
     cfg = base_cfg.copy()
     for key, value in values.items():
-        cfg.bearing[key] = float(value)
+        if value is not None:
+            cfg.bearing[key] = float(value)
     return cfg
 
 
@@ -177,12 +180,10 @@ def points_dataset(space, X, records, source, round_index, attrs, cycle):
     """
     n, m = len(records), len(cycle)
     values = [space.bearing_values(x) for x in X]
-    coords = {k: ("design", [v[k] for v in values], {"units": u, "long_name": ln})
-              for k, u, ln in (("PCR", "mm", "profile curve radius of the roller"), ("kappa", "1", "osculation (2.7)"),
-                               ("aP", "mm", "distance between the contact points"),
-                               ("aPk", "mm", "small end face to the first contact point"),
-                               ("alpha", "deg", "roller-axis (mean contact) angle"),
-                               ("ratings_alpha", "deg", "contact angle of the ISO 281 factors"))}
+    # every design parameter the designs set (a per-point osculation left to kappa is not one)
+    shown = {k: a for k, a in DESIGN_PARAMETERS.items() if space.template[k] is not None or k in space.names}
+    shown["ratings_alpha"] = ("deg", "contact angle of the ISO 281 factors")
+    coords = {k: ("design", [v[k] for v in values], {"units": u, "long_name": ln}) for k, (u, ln) in shown.items()}
     coords["source"] = ("design", [source] * n,
                         {"long_name": "initial (space-filling), verification or refinement (final local stage) run"})
     coords["round"] = ("design", np.full(n, round_index, dtype=np.int32),

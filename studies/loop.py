@@ -224,6 +224,13 @@ class DesignSearch:
         records = evaluate_designs(self.case_cfgs, points, self.quantities, int(self.study.n_jobs))
         return points_dataset(self.space, X, records, source, round_index, self.attrs(), self.cycle)
 
+    def initial_points(self):
+        """The initial design: the designs of ``initial_design.include`` (known ones, e.g. an optimum
+        to start from), then the space-filling sequence of ``initial_design.n`` points."""
+        d = self.study.initial_design
+        sample = self.space.sample(int(d.n), str(d.method), int(self.study.seed))
+        return np.vstack([self.space.include(d.get("include", [])), sample])
+
     def initial_design(self):
         """Load the training data, or simulate the space-filling design and save it.
 
@@ -232,8 +239,7 @@ class DesignSearch:
         rerun continues with the rest of the same (seeded) sequence (issue 16 item 8).
         """
         ds = self.load_training()
-        d = self.study.initial_design
-        X = self.space.sample(int(d.n), str(d.method), int(self.study.seed))
+        X = self.initial_points()
         if ds is not None:
             self.log(f"resuming from {self.training_path}: {ds.sizes['design']} simulations")
             local = ds.source.values == REFINEMENT
@@ -255,7 +261,8 @@ class DesignSearch:
             self.save_training(ds)
             self.log(f"initial design: {ds.sizes['design']} of {len(X)} simulated")
         counts = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
-        self.log(f"initial design: {self.count(len(X) - done, str(d.method))} in {time.perf_counter() - t0:.1f} s {counts}")
+        self.log(f"initial design: {self.count(len(X) - done, str(self.study.initial_design.method))} in "
+                 f"{time.perf_counter() - t0:.1f} s {counts}")
         return ds
 
     def count(self, n, kind=""):

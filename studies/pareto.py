@@ -48,6 +48,7 @@ from studies.optimize import STUDY_ERRORS, elapsed_log, prepared_search, refused
 from studies.report import load_case_label
 from studies.refine import local_refine
 from studies.search import complete_trials, make_sampler, make_storage, open_study, run_trials, trial_margins
+from studies.space import DESIGN_PARAMETERS
 
 # objectives a front may pair (studies.config.PARETO_OBJECTIVES): optimisation direction, label, units (DATA.md)
 OBJECTIVES = {"power_loss": ("minimize", "frictional power loss", "W"),
@@ -261,7 +262,7 @@ class ParetoFront:
         if idx.size:
             front[idx[non_dominated(F[idx], self.directions)]] = True
         return xr.Dataset(
-            {n: ("point", X[:, j], {"units": PARAM_UNITS[n]}) for j, n in enumerate(s.space.names)}
+            {n: ("point", X[:, j], {"units": DESIGN_PARAMETERS[n][0]}) for j, n in enumerate(s.space.names)}
             | {p: ("point", F[:, j], {"units": OBJECTIVES[p][2], "long_name": OBJECTIVES[p][1]})
                for j, p in enumerate(self.pair)}
             | {"margin": (("point", "constraint"), M, {"units": "1", "long_name": "normalised margin, <= 0 feasible"}),
@@ -269,9 +270,6 @@ class ParetoFront:
                "stage": ("point", stage, {"long_name": "nsga2 or epsilon_constraint"}),
                "on_front": ("point", front, {"long_name": "feasible and non-dominated among all points"})},
             coords={"point": np.arange(len(stage)), "constraint": self.margin_names})
-
-
-PARAM_UNITS = {"PCR": "mm", "kappa": "1", "aP": "mm", "aPk": "mm", "alpha": "deg"}
 
 
 def reference_point(front, label):

@@ -4,7 +4,15 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import qmc
 
-from studies.config import DESIGN_PARAMETERS
+#: the osculation per contact point and race (thesis 8.2; null or absent in the bearing: kappa)
+POINT_OSCULATIONS = {
+    f"kappa_{race}_{end}": ("1", f"osculation of the {race} raceway at the {end}-end contact point (2.7)")
+    for race in ("outer", "inner") for end in ("small", "large")}
+#: searchable TSRB parameters (conf/bearing keys, sim.config_schema): name -> (units, long name)
+DESIGN_PARAMETERS = {
+    "PCR": ("mm", "profile curve radius of the roller"), "kappa": ("1", "osculation (2.7)"),
+    "aP": ("mm", "distance between the contact points"), "aPk": ("mm", "small end face to the first contact point"),
+    "alpha": ("deg", "roller-axis (mean contact) angle"), **POINT_OSCULATIONS}
 
 
 @dataclass(frozen=True)
@@ -18,7 +26,9 @@ class DesignSpace:
     low, high : ndarray
         Their bounds [mm for PCR, aP, aPk; 1 for kappa; deg for alpha].
     template : dict
-        Values of all :data:`DESIGN_PARAMETERS` (and ``ratings_alpha``) in the template bearing.
+        Values of all :data:`DESIGN_PARAMETERS` (and ``ratings_alpha``) in the template bearing;
+        a per-point osculation that the template leaves null (it follows kappa) stays None unless
+        free, where it starts at the template's kappa, its value in the template.
     """
 
     names: tuple
@@ -31,7 +41,11 @@ class DesignSpace:
         """From ``study.free``/``study.bounds`` and the composed template ``bearing`` node."""
         names = tuple(str(n) for n in study.free)
         bounds = np.array([[float(v) for v in study.bounds[n]] for n in names])
-        template = {k: float(template_bearing[k]) for k in (*DESIGN_PARAMETERS, "ratings_alpha")}
+        template = {k: float(template_bearing[k]) for k in (*DESIGN_PARAMETERS, "ratings_alpha")
+                    if k not in POINT_OSCULATIONS}
+        for k in POINT_OSCULATIONS:   # null or absent: kappa
+            value = template_bearing.get(k)
+            template[k] = float(value) if value is not None else (template["kappa"] if k in names else None)
         return cls(names, bounds[:, 0], bounds[:, 1], template)
 
     @property
@@ -65,6 +79,11 @@ class DesignSpace:
         if "alpha" in self.names:
             values["ratings_alpha"] = values["alpha"]
         return values
+
+    def include(self, points):
+        """Design matrix (n, d) of the designs ``points`` (name: value mappings holding the free
+        parameters, ``study.initial_design.include``)."""
+        return np.array([[float(p[n]) for n in self.names] for p in points]).reshape(len(points), len(self.names))
 
     def ratings_alpha(self, X):
         """``ratings_alpha`` [deg] of each design of X (n, d), as :meth:`bearing_values` sets it."""

@@ -193,7 +193,7 @@ def verified_points(search, trials, attrs=None):
     names = search.space.names
     X = np.array([search.space.from_params(t.params) for t in done]).reshape(len(done), len(names))
     ds = points_dataset(search.space, X, [[t.user_attrs["record"]] for t in done], "initial", 0, attrs or {}, search.cycle)
-    n0 = int(search.study.initial_design.n)
+    n0 = len(search.initial_points())
     source = [t.user_attrs.get("source", "verification") for t in done]
     rounds = np.array([0 if s == "initial" else t.user_attrs["slot"] - n0 + 1 for s, t in zip(source, done)],
                       dtype=np.int32)
@@ -263,7 +263,7 @@ class Workers:
             study = optuna.create_study(storage=self.storage, study_name=self.name, direction="minimize")
             for key, value in {**search.config_attrs(), "limits": asdict(search.limits)}.items():
                 study.set_user_attr(key, value)
-            X = search.space.sample(int(s.initial_design.n), str(s.initial_design.method), int(s.seed))
+            X = search.initial_points()
             for x in X:
                 study.enqueue_trial(dict(zip(search.space.names, map(float, x))), user_attrs={"source": "initial"})
             study.set_user_attr(CREATED_ATTR, True)

@@ -14,8 +14,9 @@ penetrates the raceway deepest (thesis (5.11)-(5.14) find it by a ray-torus inte
 
 Kernel units: mm, rad. Profiles are given as (kind, params) arrays built by
 :class:`sim.geometry.Geometry` (``RACE_LINE``: point and unit normal into the ring;
-``RACE_LENS``: two arc centres and their radius PCR_LB; the cavity is the intersection of
-the two disks, so the penetration is the larger of the two arcs' penetrations).
+``RACE_LENS``: two arc centres and their radii PCR (2 - kappa_k), eq. (2.7) per contact point
+(thesis 8.2; equal, PCR_LB, for the symmetric osculation); the cavity is the intersection of the
+two disks, so the penetration is the larger of the two arcs' penetrations).
 """
 import numpy as np
 
@@ -63,19 +64,56 @@ def race_penetration(qr, qz, kind, par):
     """
     if kind == RACE_LINE:
         return (qr - par[0]) * par[2] + (qz - par[1]) * par[3], par[2], par[3]
+    best, nr, nz, _ = lens_penetration(qr, qz, par)
+    return best, nr, nz
+
+
+@kernel
+def lens_penetration(qr, qz, par):
+    """Penetration of a point into a RACE_LENS profile and the arc that bounds it there.
+
+    Parameters
+    ----------
+    qr, qz : float
+        Point in the meridian plane, ring coordinates [mm].
+    par : ndarray (6,)
+        (r1, z1, r2, z2, R1, R2): arc centres and radii [mm] (sim.geometry.Geometry._race_arrays).
+
+    Returns
+    -------
+    d, nr, nz : float
+        As :func:`race_penetration`: the larger of the arc penetrations |q - c_k| - R_k [mm] and
+        the unit normal (q - c_k)/|q - c_k| of that arc.
+    radius : float
+        R_k of that arc [mm]: the profile's radius of curvature at the nearest profile point.
+    """
     best = NO_CONTACT
     nr = 0.0
     nz = 0.0
+    radius = par[4]
     for k in range(2):
         dr = qr - par[2 * k]
         dz = qz - par[2 * k + 1]
         dist = np.sqrt(dr * dr + dz * dz)
-        d = dist - par[4]
+        d = dist - par[4 + k]
         if d > best:
             best = d
             nr = dr / dist
             nz = dz / dist
-    return best, nr, nz
+            radius = par[4 + k]
+    return best, nr, nz, radius
+
+
+@kernel
+def to_ring(qr, qz, ring_dr, ring_dz, ring_phi):
+    """A meridian point in world (r, z) -> the ring's coordinates [mm]: Rot(-phi) (q - translation),
+    the ring displaced by (ring_dr, ring_dz) [mm] and turned by ring_phi [rad] (world = Rot(phi) ring
+    + translation)."""
+    cp = np.cos(ring_phi)
+    sp = np.sin(ring_phi)
+    tr = qr - ring_dr
+    tz = qz - ring_dz
+    return cp * tr + sp * tz, -sp * tr + cp * tz
 
 
 @kernel
@@ -144,11 +182,7 @@ def slice_contact_meridian(x, rho, side, pose, alpha, Dpw, kind, par, ring_dr, r
         y = side * rho[k]
         qr = cr + x[k] * ur + y * vr
         qz = cz + x[k] * uz + y * vz
-        # into ring coordinates: Rot(-phi) (q - translation)
-        tr = qr - ring_dr
-        tz = qz - ring_dz
-        lr = cp * tr + sp * tz
-        lz = -sp * tr + cp * tz
+        lr, lz = to_ring(qr, qz, ring_dr, ring_dz, ring_phi)
         d, nr, nz = race_penetration(lr, lz, kind, par)
         d_out[k] = d
         n_out[k, 0] = cp * nr - sp * nz

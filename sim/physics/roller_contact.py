@@ -18,9 +18,9 @@ The tangent stiffness is the exact Jacobian K = -df/dy:
 - material part: w G^T (dq/dd) G for slices (q line load, w slice width, dq/dd the tangent of
   the slice elasticity on the loaded set) and dQ/dd g g^T for the rib;
 - geometric part: w sum_k q_k H_k with H_k the second derivative of the penetration: the
-  raceway curvature (t.dP/dy_a)(t.dP/dy_b)/r_c (t the profile tangent, r_c = PCR_LB of a
-  TSRB arc; zero for a straight TRB cone) plus n . d2P/dtheta2 = -n.(x u' + y v') of the
-  turning slice point P (and -c_x n.u' for the rib sphere centre).
+  raceway curvature (t.dP/dy_a)(t.dP/dy_b)/r_c (t the profile tangent, r_c the radius of the
+  TSRB arc that bounds the slice, PCR (2 - kappa_k); zero for a straight TRB cone) plus
+  n . d2P/dtheta2 = -n.(x u' + y v') of the turning slice point P (and -c_x n.u' for the rib sphere centre).
 
 Kernels share state through named tuples of arrays (STYLE.md): :data:`BearingArrays` (the
 bearing), :data:`ContactFrames` (frames of Z rollers, or of one roller), :data:`RollerContact`
@@ -33,7 +33,8 @@ import numpy as np
 from sim._math.jit import kernel
 from sim._math.linalg import solve_dense
 from sim.geometry import RACE_LENS
-from sim.physics.contact import NO_CONTACT, hertz_point_load, roller_axes, slice_contact_meridian
+from sim.physics.contact import (NO_CONTACT, hertz_point_load, lens_penetration, roller_axes, slice_contact_meridian,
+                                 to_ring)
 from sim.physics.elasticity import INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, independent_slice_loads
 
 NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'), theta, delta_a, delta_r
@@ -272,7 +273,8 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
             # n . d2P/dtheta2 = -n . (x u' + y v')
             K[2, 2] -= wq * (nrm[k, 0] * (x[k] * ur + y * vr) + nrm[k, 1] * (x[k] * uz + y * vz))
             if lens:
-                # curvature of the raceway arc: (t . dP/dy)^2 / r_c, t = (-n_z, n_r), r_c = d + PCR_LB
+                # curvature of the raceway arc: (t . dP/dy)^2 / r_c, t = (-n_z, n_r), r_c = d + R_k of the
+                # arc k that bounds the slice (PCR (2 - kappa_k), eq. (2.7) per contact point)
                 tr = -nrm[k, 1]
                 tz = nrm[k, 0]
                 T[0] = tr * ur + tz * uz
@@ -284,7 +286,12 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
                 else:
                     T[3] = 0.0
                     T[4] = 0.0
-                kap = wq / (d[k] + bearing.race_par[s, 4])
+                if s == 0:
+                    lr, lz = frames.X[0, k, 0], frames.X[0, k, 1]
+                else:
+                    lr, lz = to_ring(frames.X[1, k, 0], frames.X[1, k, 1], ring[1] * cpsi, ring[0], phi)
+                r_arc = lens_penetration(lr, lz, bearing.race_par[s])[3]  # radius of the arc bounding slice k
+                kap = wq / (d[k] + r_arc)
                 for a in range(NY):
                     for b in range(a, NY):
                         K[a, b] += kap * T[a] * T[b]

@@ -78,3 +78,56 @@ def test_command_line_exits_2_with_the_message(capsys):
     assert "study.sampler = 'simplex'" in capsys.readouterr().err
     assert main(["study.bounds.kappa=[0.99,0.9]"]) == 2
     assert "study.bounds.kappa = [0.99, 0.9]" in capsys.readouterr().err
+
+
+def test_pinion_asym_searches_the_point_osculations_from_the_included_design():
+    """conf/study/pinion_asym.yaml (issue 16 item 7): pinion's load case, constraints and bounds, the
+    four per-point osculations free instead of kappa, and the included symmetric design simulated
+    first, its per-point osculations all equal to its kappa; the names are the schema's keys."""
+    from sim.config_schema import BearingConfig
+    from sim.geometry import OSCULATION_KEYS
+    from studies.space import POINT_OSCULATIONS
+    from studies.space import DesignSpace
+
+    assert list(POINT_OSCULATIONS) == [k for pair in OSCULATION_KEYS for k in pair]
+    assert set(POINT_OSCULATIONS) <= set(BearingConfig.__dataclass_fields__)
+    cfg = compose(["study=pinion_asym"])
+    s = cfg.study
+    validate(s)
+    pinion = compose([]).study
+    assert (s.load, s.constraints, s.bounds.PCR, s.bounds.aP) == (pinion.load, pinion.constraints, pinion.bounds.PCR,
+                                                                  pinion.bounds.aP)
+    assert set(POINT_OSCULATIONS) <= set(s.free) and "kappa" not in s.free
+    space = DesignSpace.from_config(s, simulation_config(s, s.bearing, []).bearing)
+    start = space.include(s.initial_design.include)[0]
+    point = s.initial_design.include[0]
+    assert [start[space.names.index(k)] for k in POINT_OSCULATIONS] == [point.kappa] * 4
+
+
+def test_point_osculations_left_null_follow_kappa_in_a_study(pinion):
+    """A symmetric study leaves the per-point keys null (no coordinate, no override: the geometry
+    takes kappa); a free one starts at the template's kappa."""
+    from studies.space import DesignSpace
+
+    bearing = simulation_config(pinion, pinion.bearing, []).bearing
+    space = DesignSpace.from_config(pinion, bearing)
+    assert space.template["kappa_outer_small"] is None
+    assert space.bearing_values(space.low)["kappa_outer_small"] is None
+    study = OmegaConf.create(OmegaConf.to_container(pinion))
+    study.free = ["PCR", "kappa_outer_small"]
+    study.bounds.kappa_outer_small = [0.9, 0.99]
+    assert DesignSpace.from_config(study, bearing).template["kappa_outer_small"] == bearing.kappa
+
+
+@pytest.mark.parametrize("include, words", [
+    ([{"PCR": 50.0}], ["study.initial_design.include[0]", "every free parameter"]),
+    ([{"PCR": 500.0, "kappa": 0.95, "aP": 8.0, "aPk": 6.0, "alpha": 25.0}],
+     ["study.initial_design.include[0].PCR", "500.0", "study.bounds.PCR = [20.0, 150.0]"]),
+])
+def test_bad_included_designs_fail_at_start(pinion, include, words):
+    study = OmegaConf.create(OmegaConf.to_container(pinion))
+    study.initial_design.include = include
+    with pytest.raises(StudyConfigError) as err:
+        validate(study)
+    for w in words:
+        assert w in str(err.value)
