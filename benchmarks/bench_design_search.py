@@ -53,7 +53,7 @@ from omegaconf import OmegaConf  # noqa: E402
 from sim.io import write_netcdf_atomic  # noqa: E402
 from studies.config import compose  # noqa: E402
 from studies.constraints import rank_key  # noqa: E402
-from studies.evaluate import STATUS  # noqa: E402
+from studies.evaluate import STATUS, design_matrix  # noqa: E402
 from studies.loop import DesignSearch, round_seed  # noqa: E402
 from studies.refine import local_refine  # noqa: E402
 from studies.search import make_sampler, open_study, run_trials  # noqa: E402
@@ -66,13 +66,14 @@ DISTINCT_STARTS = 0.02
 
 
 class Trace:
-    """Objective, feasibility and the wall clock at each full simulation of one run."""
+    """Design, objective, feasibility and the wall clock at each full simulation of one run."""
 
     def __init__(self):
         self.t0 = time.perf_counter()
-        self.y, self.feasible, self.t = [], [], []
+        self.x, self.y, self.feasible, self.t = [], [], [], []
 
-    def add(self, y, feasible):
+    def add(self, x, y, feasible):
+        self.x.append(np.asarray(x, dtype=float))
         self.y.append(float(y))
         self.feasible.append(bool(feasible))
         self.t.append(time.perf_counter() - self.t0)
@@ -91,8 +92,8 @@ def surrogate_run(search, trace):
 
     def timed(X, source, round_index):
         part = simulate(X, source, round_index)
-        for f, m in zip(*point_values(search, part)):
-            trace.add(f, np.isfinite(f) and np.all(m <= 0.0))
+        for x, f, m in zip(design_matrix(part, search.space), *point_values(search, part)):
+            trace.add(x, f, np.isfinite(f) and np.all(m <= 0.0))
         return part
 
     search.simulate = timed
@@ -103,7 +104,8 @@ def direct_run(search, sampler_for, budget, trace):
     """An Optuna sampler on the full simulation (``sampler_for(k)``: the sampler after k trials)."""
     def evaluate(trial):
         value, m, attrs = search.simulation_trial(trial)
-        trace.add(attrs["values"][search.objective] if attrs["status"] == "ok" else np.nan, max(m) <= 0.0)
+        trace.add(search.space.from_params(trial.params),
+                  attrs["values"][search.objective] if attrs["status"] == "ok" else np.nan, max(m) <= 0.0)
         return value, m, attrs
 
     study = open_study(optuna.storages.InMemoryStorage(), "direct", sampler_for(0))
@@ -121,7 +123,7 @@ def cobyla_run(search, seed, budget, trace):
         part = search.simulate(X, "initial", 0)
         for x, f, m in zip(X, *point_values(search, part)):
             seen[x.tobytes()] = (f, m)
-            trace.add(f, np.isfinite(f) and np.all(m <= 0.0))
+            trace.add(x, f, np.isfinite(f) and np.all(m <= 0.0))
 
     X0 = space.sample(int(s.initial_design.n), "sobol", seed)
     simulate(X0)
@@ -181,13 +183,16 @@ def run_one(method, seed, overrides, budget, n0, reference):
             direct_run(search, lambda k: optuna.samplers.RandomSampler(seed=round_seed(seed, 0, k)), budget, trace)
         else:
             direct_run(search, lambda k: make_sampler(method, round_seed(seed, 0, k), settings), budget, trace)
+        names = search.space.names
     return xr.Dataset(
         {"objective_value": ("simulation", np.array(trace.y), {"units": reference[1],
                                                                "long_name": f"{reference[2]} of each full simulation"}),
          "feasible": ("simulation", np.array(trace.feasible), {"long_name": "all constraints satisfied"}),
          "elapsed": ("simulation", np.array(trace.t), {"units": "s", "long_name": "wall time when the simulation "
-                                                                                  "finished, from the run's start"})},
-        coords={"simulation": np.arange(1, len(trace.y) + 1)},
+                                                                                  "finished, from the run's start"}),
+         "design": (("simulation", "parameter"), np.array(trace.x).reshape(len(trace.x), len(names)),
+                    {"long_name": "free design parameters of the simulated design (study units)"})},
+        coords={"simulation": np.arange(1, len(trace.y) + 1), "parameter": list(names)},
         attrs={"method": method, "seed": seed, "budget": budget, "initial_design": n0})
 
 
