@@ -114,6 +114,8 @@ class FrictionModel:
         skew_on = bool(skew["enabled"])
         skew_clearance = float(np.arctan(float(skew["pocket_clearance"]) / g.Lwe))
         skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
+        self.pocket_clearance = float(skew["pocket_clearance"])     # mm, the dynamic solver's pocket too
+        self.pocket_stiffness = float(skew["pocket_stiffness"])     # N/mm per roller end
         # the per-case fields (eta0, Z, beta, drag_k: oil temperature) are set by evaluate
         self.par = FrictionParams(
             eta0=np.nan, alpha=float(lubricant.pressure_viscosity), Z=np.nan,
