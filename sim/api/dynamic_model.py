@@ -25,7 +25,8 @@ W_PER_N_MM_PER_S = 1e-3
 RPM_PER_RAD_S = 30.0 / np.pi
 
 # A dynamic case ready to run: the problem (sim.solvers.dynamic), its settings, the start state
-# y0, the quasi-static results of the case (output units, for comparison) and its kinematics.
+# y0, the quasi-static result of the case (FrictionModel.evaluate outputs in output units and the
+# roller loads Q (Z, 2) [N], for comparison) and its loaded rollers.
 DynamicCase = namedtuple("DynamicCase", ["problem", "settings", "y0", "quasi_static", "active"])
 
 
@@ -113,7 +114,7 @@ def prepare(model, friction, op, dyn):
     body = body._replace(beta=2.0 * float(dyn["contact_damping_ratio"]) / omega_n)
     problem = problem._replace(body=body)
     settings = integration_settings(g, op, body, raw, fr, dyn, omega_n)
-    return DynamicCase(problem, settings, y0, fr, raw["Q"].sum(axis=1) > 0.0)
+    return DynamicCase(problem, settings, y0, fr | {"Q": raw["Q"]}, raw["Q"].sum(axis=1) > 0.0)
 
 
 def integration_settings(g, op, body, raw, fr, dyn, omega_n):

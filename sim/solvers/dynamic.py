@@ -532,3 +532,31 @@ class Integration:
         self.rol_t = np.array(rols)
         self.tot_t = np.array(tots)
         self.last_window = np.arange(len(ts) - s.samples, len(ts))
+
+
+@kernel
+def kinetic_energy(y, problem):
+    """Kinetic energy of rollers, inner-ring translation and cage at state y [N mm]: rollers
+    1/2 m (r'^2 + z'^2 + r^2 phi'^2) + 1/2 H . omega; the ring's prescribed spin is left out
+    (constant)."""
+    bearing = problem.bearing
+    body = problem.body
+    Z = bearing.Z
+    sa = np.sin(bearing.alpha)
+    ca = np.cos(bearing.alpha)
+    w = np.empty(3)
+    H = np.empty(3)
+    E = 0.0
+    for j in range(Z):
+        o = j * NS
+        r = 0.5 * bearing.Dpw + y[o + XI] * sa + y[o + ETA] * ca
+        v2 = y[o + VXI] ** 2 + y[o + VETA] ** 2 + (r * y[o + WPHI]) ** 2
+        A = roller_axis(y[o + THETA], y[o + PSI] if body.skew else 0.0, bearing.alpha)
+        for i in range(3):
+            H[i] = y[o + HR + i]
+        angular_velocity(H, A, body.Ix, body.Iy, w)
+        E += 0.5 * body.m * v2 + 0.5 * (H[0] * w[0] + H[1] * w[1] + H[2] * w[2])
+    o = Z * NS
+    E += 0.5 * body.m_ring * (y[o + 3] ** 2 + y[o + 4] ** 2 + y[o + 5] ** 2)
+    E += 0.5 * body.I_cage * y[o + NRING + 1] ** 2
+    return E
