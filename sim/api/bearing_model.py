@@ -242,7 +242,6 @@ class BearingModel:
             ring backtracks, continuation steps, roller classes solved).
         """
         g = self.geometry
-        a = g.arrays
         s = self.settings
         n = g.n_slices
         if roller_loads is None:

@@ -12,9 +12,9 @@ from collections import namedtuple
 import numpy as np
 
 from sim.api.bearing_model import case_results
-from sim.physics.friction import COMPONENTS, lubrication_state
+from sim.physics.friction import lubrication_state
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
-from sim.solvers.dynamic import (E_DAMP, E_DISS, E_ELASTIC, E_IN, E_POCKET, ETA, HR, NCAGE, NRING, NS, PHI, PSI,
+from sim.solvers.dynamic import (ETA, HR, NCAGE, NRING, NS, PHI, PSI,
                                  RO_FP, RO_QI, RO_QO, RO_QRIB, RO_WR, THETA, TO_DAMP, TO_P0, TO_TIN, TO_TOUT, WPHI,
                                  XI, DynamicBody, DynamicProblem, DynamicSettings, Integration, roller_axis,
                                  state_size)
@@ -169,3 +169,61 @@ def refresh_film(problem, y, wR, active):
     o_cage = problem.bearing.Z * NS + NRING
     lubrication_state(wR, float(y[o_cage + 1]), problem.body.wi, active, problem.case)
 
+
+
+def outputs(model, op, dcase, integ, wall_time, output_cfg):
+    """(summary, series): the steady-state summary as :func:`sim.api.bearing_model.case_results`
+    plus the friction outputs (means over the last window, output units), and the time series
+    (output units; sim.io.SERIES_VARIABLES)."""
+    g = model.geometry
+    Z = g.Z
+    body = dcase.problem.body
+    o_ring = Z * NS
+    o_cage = o_ring + NRING
+    y = integ.y
+    rol = integ.rol_t
+    tot = integ.tot_t
+    last = integ.last_window
+    roller = y[:, :o_ring].reshape(len(integ.t), Z, NS)
+    series = {
+        "time": integ.t,
+        "roller_skew": np.degrees(roller[:, :, PSI]),
+        "roller_tilt": np.degrees(roller[:, :, THETA]),
+        "roller_xi": roller[:, :, XI],
+        "roller_eta": roller[:, :, ETA],
+        "roller_speed": rol[:, :, RO_WR] * RPM_PER_RAD_S,
+        "roller_orbit_speed": roller[:, :, WPHI] * RPM_PER_RAD_S,
+        "Q": np.stack([rol[:, :, RO_QO], rol[:, :, RO_QI]], axis=-1),
+        "Q_rib": rol[:, :, RO_QRIB],
+        "pocket_force": rol[:, :, RO_FP],
+        "cage_speed": y[:, o_cage + 1] * RPM_PER_RAD_S,
+        "ring_displacement": y[:, o_ring:o_ring + 2],
+        "torque": tot[:, TO_TOUT],
+        "drive_torque": tot[:, TO_TIN],
+        "torque_component": tot[:, TO_P0:TO_DAMP] / body.wi,
+        "power_loss": tot[:, TO_P0:TO_DAMP].sum(axis=1) * W_PER_N_MM_PER_S,
+    }
+    # steady state: the loads at the end state for the load-derived outputs, the last window's means
+    yl = y[-1]
+    q = dcase.problem.case.bearing.q.copy()
+    raw = dict(converged=bool(integ.steady), iterations=int(integ.windows), wall_time=wall_time,
+               ring=yl[o_ring:o_ring + 2].copy(), poses=roller[-1][:, [XI, ETA, THETA]].copy(), line_load=q,
+               pressure=model.hertz_pressure(q), Q=rol[-1][:, [RO_QO, RO_QI]], Q_rib=rol[-1][:, RO_QRIB],
+               residual=np.zeros(2))
+    summary = case_results(model, op, raw, output_cfg)
+    if not integ.steady:
+        return summary, series
+    power = tot[last, TO_P0:TO_DAMP].mean(axis=0)
+    torque = float(tot[last, TO_TOUT].mean())
+    summary.update(
+        Q=rol[last][:, :, [RO_QO, RO_QI]].mean(axis=0),
+        Q_rib=rol[last][:, :, RO_QRIB].mean(axis=0),
+        roller_tilt=np.degrees(roller[last][:, :, THETA].mean(axis=0)),
+        roller_skew=np.degrees(roller[last][:, :, PSI].mean(axis=0)),
+        torque=torque,
+        # breakdown in proportion to each mechanism's power (as the quasi-static result)
+        torque_component=torque * power / power.sum(),
+        power_loss=float(power.sum()) * W_PER_N_MM_PER_S,
+        cage_speed=float(y[last, o_cage + 1].mean()) * RPM_PER_RAD_S,
+    )
+    return summary, series
