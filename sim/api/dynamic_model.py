@@ -12,6 +12,7 @@ from collections import namedtuple
 import numpy as np
 
 from sim.api.bearing_model import case_results
+from sim.api.friction_model import film_outputs
 from sim.physics.friction import lubrication_state
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.dynamic import (ETA, HR, NCAGE, NRING, NS, PHI, PSI,
@@ -215,7 +216,11 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
         return summary, series
     power = tot[last, TO_P0:TO_DAMP].mean(axis=0)
     torque = float(tot[last, TO_TOUT].mean())
+    # film outputs at the end state, with the film of the last window
+    srr, film_um, lam = film_outputs(dcase.problem.case, rol[-1][:, RO_QO] + rol[-1][:, RO_QI], float(yl[o_cage + 1]),
+                                     rol[-1][:, RO_WR], body.wi)
     summary.update(
+        srr=srr, film_thickness=film_um, lambda_ratio=lam,
         Q=rol[last][:, :, [RO_QO, RO_QI]].mean(axis=0),
         Q_rib=rol[last][:, :, RO_QRIB].mean(axis=0),
         roller_tilt=np.degrees(roller[last][:, :, THETA].mean(axis=0)),
