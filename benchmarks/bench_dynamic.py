@@ -15,15 +15,21 @@ Run from the repository root::
 import argparse
 import os
 import statistics
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
-import sim
-from sim.api import dynamic_model
-from sim.api.cases import operating_points
-from sim.api.simulation import build_models, resolved
-from sim.solvers.dynamic import Integration
+REPO = Path(__file__).resolve().parent.parent
+if str(REPO) not in sys.path:
+    sys.path.insert(0, str(REPO))  # run from a checkout: this sim/, not an installed one
+
+import sim  # noqa: E402
+from sim.api import dynamic_model  # noqa: E402
+from sim.api.cases import operating_points  # noqa: E402
+from sim.api.simulation import build_models, resolved  # noqa: E402
+from sim.solvers.dynamic import Integration  # noqa: E402
 
 CASES = {
     "trb_32208 4.5 kN 2000 rpm": ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.speed=2000"],

@@ -9,11 +9,16 @@ rolling kinematics (the start transient is part of the plot).
 """
 import argparse
 import pathlib
+import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+
+REPO = pathlib.Path(__file__).resolve().parents[2]
+if str(REPO) not in sys.path:
+    sys.path.insert(0, str(REPO))  # run from a checkout: this sim/, not an installed one
 
 import sim  # noqa: E402
 

@@ -52,7 +52,9 @@ Loads (every formula is a physics kernel; this module only assembles them):
   translation and tilt/skew rates (micrometres per second against metres per second at the
   steady state);
 - cage pocket: circumferential penalty at the pitch radius, force -k (|g| - c/2) sign(g) beyond
-  the half play c/2 plus a damper while in contact (never pulling), its friction
+  the half play c/2 plus a damper while in contact (never pulling), both set in smoothly over a
+  transition depth (a roller resting on its pocket with a few hundredths of a newton sits there:
+  a kink in the force made the integrator's steps 100x shorter), its friction
   (:func:`sim.physics.friction.pocket_friction`), and with skew the pocket couple
   (:func:`sim.physics.friction.pocket_skew_couple`) with a damper of the same ratio.
 
@@ -105,6 +107,7 @@ DynamicBody = namedtuple("DynamicBody", [
     "k_pocket",   # N/mm, circumferential pocket stiffness (both roller ends)
     "c_pocket",   # N s/mm, its damper
     "half_play",  # mm, circumferential half play of a roller in its pocket
+    "pocket_transition",  # mm, depth over which the pocket contact's stiffness and damping set in
     "c_skew",     # N mm s/rad, damper of the pocket skew couple
     "beta",       # s, stiffness-proportional contact damping
     "Fa",         # N, axial load on the inner ring along +z
@@ -278,8 +281,18 @@ def rhs(y, problem, work, dy, rol, tot, ring_rows):
         Fs = 0.0
         if pen > 0.0:
             sg = 1.0 if g > 0.0 else -1.0
-            Fs = -sg * body.k_pocket * pen
-            Fp = Fs - body.c_pocket * gdot
+            # onset smooth to first order over the transition depth d_s (as MSC Adams' IMPACT
+            # function): spring k pen^2 / (2 d_s) below d_s, k (pen - d_s / 2) beyond; damper
+            # ramped in by the cubic step 3 s^2 - 2 s^3, s = pen / d_s
+            d_s = body.pocket_transition
+            ramp = 1.0
+            if pen < d_s:
+                s_ = pen / d_s
+                ramp = s_ * s_ * (3.0 - 2.0 * s_)
+                Fs = -sg * body.k_pocket * pen * pen / (2.0 * d_s)
+            else:
+                Fs = -sg * body.k_pocket * (pen - 0.5 * d_s)
+            Fp = Fs - ramp * body.c_pocket * gdot
             if Fp * sg > 0.0:   # a damper never pulls the roller into the wall
                 Fp = 0.0
         Ft_ += Fp
