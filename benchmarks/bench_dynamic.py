@@ -57,7 +57,7 @@ def bench(overrides, revolutions, repeats):
         times.append(time.perf_counter() - t)
     rhs_ms = 1e3 * statistics.median(times)
     # every window runs: no steady-state stop
-    settings = dc.settings._replace(max_windows=revolutions, tol_speed=0.0, tol_torque=0.0, tol_load=0.0,
+    settings = dc.settings._replace(max_windows=revolutions, tol_speed=0.0, tol_torque=0.0, tol_load=0.0, tol_skew=0.0,
                                     window=2.0 * np.pi / dc.problem.body.wi)
     t = time.perf_counter()
     integ = dynamic_model.run(dc._replace(settings=settings))

@@ -2,10 +2,11 @@
 the config, the start from the quasi-static solution, the run, and its outputs in output units.
 
 Start: the combined quasi-static solution of the case (load distribution, traction kinematics,
-the friction loads fed back once, as :func:`sim.api.simulation.solve_case`): roller poses,
-inner-ring displacement and skews; the speeds either of that solution
-(``solver.dynamic.start = quasi_static``) or of rolling without slip (``rolling``, eqs. 2.20,
-2.22), from which the rollers and the cage must find their traction balance themselves.
+the friction loads fed back once, as :func:`sim.api.simulation.solve_case`): roller poses and
+inner-ring displacement; speeds and skews either of that solution
+(``solver.dynamic.start = quasi_static``) or of rolling without slip and no skew (``rolling``,
+eqs. 2.20, 2.22), from which the rollers and the cage must find their traction and skew balance
+themselves.
 """
 from collections import namedtuple
 
@@ -42,6 +43,7 @@ def body_and_state(model, friction, op, dyn, raw, kin):
     if str(dyn["start"]) == "rolling":
         wc = float(angular_speed(cage_speed_rolling(op.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR[:] = float(angular_speed(roller_speed_rolling(op.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha)))
+        psi[:] = 0.0
     m = float(a["mass"])
     k_pocket = 2.0 * friction.pocket_stiffness   # both roller ends
     zeta_p = float(dyn["pocket_damping_ratio"])
@@ -150,7 +152,8 @@ def integration_settings(g, op, body, raw, fr, dyn, omega_n):
     rtol = float(dyn["rtol"])
     return DynamicSettings(str(dyn["method"]), rtol, rtol * scale, window, int(dyn["samples_per_window"]),
                            int(dyn["max_windows"]), float(dyn["steady_tolerance_speed"]),
-                           float(dyn["steady_tolerance_torque"]), float(dyn["steady_tolerance_load"]), scale)
+                           float(dyn["steady_tolerance_torque"]), float(dyn["steady_tolerance_load"]),
+                           float(dyn["steady_tolerance_skew"]), scale)
 
 
 def run(dcase):

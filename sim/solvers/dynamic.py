@@ -440,11 +440,12 @@ def jacobian(y, f0, ring0, problem, work, scale, J, rol, tot):
 # Integration and steady-state settings (conf/solver/dynamic.yaml, sim.api.dynamic_model):
 # method ('Radau' or 'BDF', scipy.integrate.solve_ivp), rtol [1], atol (state vector), window
 # [s] (film refresh and steady-state window), samples per window, max_windows (time cap),
-# tol_speed, tol_torque, tol_load: relative changes of the window means of cage speed, outer-ring
-# torque and roller loads below which two consecutive windows count as steady, scale (state
+# tol_speed, tol_torque, tol_load, tol_skew: relative changes of the window means of cage speed,
+# outer-ring torque and roller loads, and of the skews over the pocket's skew clearance, below
+# which two consecutive windows count as steady, scale (state
 # vector: finite-difference step floors, sim.api.dynamic_model).
 DynamicSettings = namedtuple("DynamicSettings", ["method", "rtol", "atol", "window", "samples", "max_windows",
-                                                 "tol_speed", "tol_torque", "tol_load", "scale"])
+                                                 "tol_speed", "tol_torque", "tol_load", "tol_skew", "scale"])
 
 
 class Integration:
@@ -453,7 +454,9 @@ class Integration:
     ``refresh`` (callable(y, rol)): refreshes the film of the problem at the state y (the
     caller's physics, :func:`sim.physics.friction.lubrication_state`) before every window.
     After :meth:`run`: ``t`` (samples,), ``y`` (samples, state), ``rol_t`` (samples, Z, NRO),
-    ``tot_t`` (samples, NTO), ``last_window`` (sample indices of the last window), ``steady`` (bool), ``windows``, ``rhs_calls``, ``jac_calls``.
+    ``tot_t`` (samples, NTO), ``last_window`` (sample indices of the last window), ``steady``
+    (bool), ``windows``, ``change`` (the last relative changes of speed, torque, loads),
+    ``rhs_calls``, ``jac_calls``.
     """
 
     def __init__(self, problem, settings, refresh=None):
@@ -530,13 +533,17 @@ class Integration:
             Y = np.array(ys[win])
             R = np.array(rols[win])
             T = np.array(tots[win])
-            means = (Y[:, o_cage + 1].mean(), T[:, TO_TOUT].mean(), R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0))
+            means = (Y[:, o_cage + 1].mean(), T[:, TO_TOUT].mean(), R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0),
+                     Y[:, PSI:self.Z * NS:NS].mean(axis=0))
             if prev is not None:
                 d_speed = abs(means[0] - prev[0]) / abs(means[0])
                 d_torque = abs(means[1] - prev[1]) / max(abs(means[1]), np.finfo(float).tiny)
                 d_load = np.abs(means[2] - prev[2]).max() / np.abs(means[2]).max()
-                self.change = (d_speed, d_torque, d_load)
-                if d_speed < s.tol_speed and d_torque < s.tol_torque and d_load < s.tol_load:
+                # skews against the pocket's skew clearance (0 without free skew)
+                d_skew = np.abs(means[3] - prev[3]).max() / self.problem.case.par.skew_clearance
+                self.change = (d_speed, d_torque, d_load, d_skew)
+                if (d_speed < s.tol_speed and d_torque < s.tol_torque and d_load < s.tol_load
+                        and d_skew < s.tol_skew):
                     self.steady = True
                     break
             prev = means
