@@ -310,11 +310,32 @@ class LoadConfig:
 
 
 @dataclass
+class DynamicConfig:
+    """Time-domain solver settings (sim/solvers/dynamic.py); reasons and sources in conf/solver/dynamic.yaml."""
+
+    start: str = key(Choice(("rolling", "quasi_static")))
+    method: str = key(Choice(("BDF", "Radau")))
+    rtol: Any = key(Number(1e-12, 1e-2, low_open=True))
+    contact_damping_ratio: Any = key(Number(0.0, 2.0))
+    pocket_damping_ratio: Any = key(Number(0.0, 2.0))
+    pocket_transition: Any = key(Number(0.0, 1.0, low_open=True, units="mm"))
+    inner_ring_mass: Any = key(Number(0.0, 1e4, low_open=True, units="kg"))
+    cage_inertia: Any = key(Number(0.0, 1e3, low_open=True, units="kg m^2"))
+    window_revolutions: Any = key(Number(0.0, 1e3, low_open=True))
+    samples_per_window: Any = key(Number(2, 10000, integer=True))
+    max_windows: Any = key(Number(2, 10000, integer=True))
+    steady_tolerance_speed: Any = key(Number(0.0, 1.0, low_open=True))
+    steady_tolerance_torque: Any = key(Number(0.0, 1.0, low_open=True))
+    steady_tolerance_load: Any = key(Number(0.0, 1.0, low_open=True))
+    steady_tolerance_skew: Any = key(Number(0.0, 1.0, low_open=True))
+
+
+@dataclass
 class SolverConfig:
     """Quasi-static solver settings (MODEL.md 4); the Newton limits' reasons are in
     conf/solver/quasi_static.yaml."""
 
-    name: str = key(Choice(("quasi_static",)))
+    name: str = key(Choice(("quasi_static", "dynamic")))
     n_slices: Any = key(Number(2, 400, integer=True))
     elasticity: str = key(Choice(("coupled", "independent")))
     tolerance: Any = key(Number(1e-14, 1e-3, low_open=True))
@@ -334,6 +355,7 @@ class SolverConfig:
                                           "has long yielded")
     max_speed_dm: Any = key(Number(0.0, 2e6, low_open=True, units="mm/min"),
                             note="DN 2e6 is beyond every rolling bearing of this kind in service")
+    dynamic: Any = field(default=None, metadata={"check": None, "schema": DynamicConfig})
 
 
 @dataclass
@@ -424,6 +446,12 @@ def node_problems(schema, node, path, *, bearing_type=None, keys=None, strict=Fa
         value = None if missing else node[f.name]
         if is_dataclass(f.type):
             problems += node_problems(f.type, value, name, bearing_type=bearing_type, strict=strict, scalar=scalar)
+            continue
+        if f.metadata.get("schema") is not None:
+            # a node only some configs have (solver.dynamic with solver=dynamic): checked where present
+            if value is not None:
+                problems += node_problems(f.metadata["schema"], value, name, bearing_type=bearing_type,
+                                          strict=strict, scalar=scalar)
             continue
         check, only, note = f.metadata.get("check"), f.metadata.get("only"), f.metadata.get("note")
         if check is None:

@@ -518,6 +518,9 @@ class Geometry:
         rs = self.roller_radius(np.clip(xs, -0.5 * self.Lwe * (1 - 1e-9), 0.5 * self.Lwe * (1 - 1e-9)))
         out["mass"] = self.density * np.trapezoid(np.pi * rs**2, xs)                 # t
         out["inertia_axial"] = self.density * np.trapezoid(0.5 * np.pi * rs**4, xs)  # t mm^2
+        # about a transverse axis through the mid-length point (the roller centre of the kernels):
+        # discs of radius r at x, (r^2 / 4 + x^2) pi r^2 dx each [t mm^2]
+        out["inertia_transverse"] = self.density * np.trapezoid(np.pi * rs**2 * (0.25 * rs**2 + xs**2), xs)
         if self.type == "TRB":
             out["rib"] = self._rib_arrays()
         else:

@@ -275,6 +275,51 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     return _dataset(data, coords, indexes, provenance_attrs(title, config_yaml, settings))
 
 
+# Time series of the dynamic solver (sim.api.dynamic_model.outputs): name -> (dims after design,
+# case, time; units; long_name). Named with a ``_t`` suffix beside the steady-state summary of the
+# same quantity (DATA.md names on design, case).
+SERIES_VARIABLES = {
+    "roller_skew_t": (("roller",), "deg", "roller skew over time (as roller_skew)"),
+    "roller_tilt_t": (("roller",), "deg", "roller tilt over time (as roller_tilt)"),
+    "roller_xi_t": (("roller",), "mm", "roller centre along its nominal axis u (sim.solvers.quasi_static xi)"),
+    "roller_eta_t": (("roller",), "mm", "roller centre along its nominal radial axis v (sim.solvers.quasi_static eta)"),
+    "roller_speed_t": (("roller",), "rpm", "roller speed about its axis relative to its orbit"),
+    "roller_orbit_speed_t": (("roller",), "rpm", "orbit speed of the roller centre"),
+    "Q_t": (("roller", "race"), "N", "roller-raceway normal load over time"),
+    "Q_rib_t": (("roller",), "N", "roller-end / rib normal load over time"),
+    "pocket_force_t": (("roller",), "N", "cage pocket force on the roller along the rolling direction e_t"),
+    "cage_speed_t": ((), "rpm", "cage speed over time"),
+    "ring_displacement_t": (("direction",), "mm", "inner-ring displacement over time (axial, radial along Fr)"),
+    "torque_t": ((), "N*mm", "frictional torque on the outer ring over time"),
+    "drive_torque_t": ((), "N*mm", "torque that drives the inner ring at its speed over time"),
+    "torque_component_t": (("component",), "N*mm", "loss power by mechanism / inner-ring speed over time"),
+    "power_loss_t": ((), "W", "frictional power loss over time"),
+}
+SERIES_SOURCE = {"roller_skew_t": "roller_skew", "roller_tilt_t": "roller_tilt", "roller_xi_t": "roller_xi",
+                 "roller_eta_t": "roller_eta", "roller_speed_t": "roller_speed",
+                 "roller_orbit_speed_t": "roller_orbit_speed", "Q_t": "Q", "Q_rib_t": "Q_rib",
+                 "pocket_force_t": "pocket_force", "cage_speed_t": "cage_speed",
+                 "ring_displacement_t": "ring_displacement", "torque_t": "torque", "drive_torque_t": "drive_torque",
+                 "torque_component_t": "torque_component", "power_loss_t": "power_loss"}
+
+
+def build_dynamic_dataset(geometry, op, summary, series, config_yaml, settings, dynamic_settings):
+    """The Dataset of one dynamic run (one case): the steady-state summary in the layout of
+    :func:`build_dataset` (``converged`` = a steady state was found) plus the time series
+    (:data:`SERIES_VARIABLES`) on (design, case, time); ``series``: name -> array (time, ...)
+    in output units, ``time`` [s]."""
+    ds = build_dataset(geometry, [op], [summary], config_yaml, settings)
+    data = {}
+    for name, (dims, units, long_name) in SERIES_VARIABLES.items():
+        values = np.asarray(series[SERIES_SOURCE[name]])[None, None]
+        data[name] = (("design", "case", "time") + dims, values, {"units": units, "long_name": long_name})
+    ds = ds.assign(data).assign_coords(time=("time", np.asarray(series["time"]),
+                                             {"units": "s", "long_name": "time from the start of the run"}))
+    ds.attrs.update(solver="dynamic", solver_settings=f"{settings}; dynamic: {dynamic_settings}",
+                    title=f"{geometry.type} time-domain multibody run (sim.solvers.dynamic) and its steady state")
+    return ds
+
+
 #: this host, as a short tag in the names of temporary files (a hostname may hold dots)
 HOST_TAG = hashlib.sha256(socket.gethostname().encode()).hexdigest()[:8]
 TMP_SUFFIX = ".tmp"

@@ -187,6 +187,12 @@ class BearingModel:
         Mg = g.arrays["inertia_axial"] * omega_r * omega_c * np.sin(g.alpha) if self.settings.gyroscopic else 0.0
         return BodyLoads(float(Fc), float(Mg))
 
+    def hertz_pressure(self, q):
+        """Hertz pressure [MPa] of every slice of line loads q (Z, 2, N) [N/mm]: the kernel's
+        formula evaluated by numpy (py_func), so that no array signature of it is compiled."""
+        p0 = getattr(hertz_line_pressure, "py_func", hertz_line_pressure)
+        return np.where(q > 0.0, p0(np.maximum(q, 0.0), self.geometry.arrays["R_eq"][None, :, :], self.E_star), 0.0)
+
     def initial_ring(self, op: OperatingPoint):
         """Start value of the inner-ring displacement (delta_a, delta_r) [mm]: the line-contact
         approach of an equal share of max(Fa, Fr) along the roller axis normal (APPROACH_LOG_TERM)."""
@@ -236,7 +242,6 @@ class BearingModel:
             ring backtracks, continuation steps, roller classes solved).
         """
         g = self.geometry
-        a = g.arrays
         s = self.settings
         n = g.n_slices
         if roller_loads is None:
@@ -308,10 +313,7 @@ class BearingModel:
             if not converged:
                 ext[:] = ext_case
         wall_time_s = time.perf_counter() - t0
-        # Hertz pressure of every slice: the kernel's formula evaluated by numpy (py_func), so that
-        # no array signature of it is compiled
-        p0 = getattr(hertz_line_pressure, "py_func", hertz_line_pressure)
-        pressure = np.where(q > 0.0, p0(np.maximum(q, 0.0), a["R_eq"][None, :, :], self.E_star), 0.0)
+        pressure = self.hertz_pressure(q)
         last = reports[-1]
         solver_info = dict(roller_iterations=int(totals[0]), contact_evaluations=int(totals[1]),
                            ring_backtracks=int(totals[2]), continuation_steps=steps,

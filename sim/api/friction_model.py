@@ -114,6 +114,8 @@ class FrictionModel:
         skew_on = bool(skew["enabled"])
         skew_clearance = float(np.arctan(float(skew["pocket_clearance"]) / g.Lwe))
         skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
+        self.pocket_clearance = float(skew["pocket_clearance"])     # mm, the dynamic solver's pocket too
+        self.pocket_stiffness = float(skew["pocket_stiffness"])     # N/mm per roller end
         # the per-case fields (eta0, Z, beta, drag_k: oil temperature) are set by evaluate
         self.par = FrictionParams(
             eta0=np.nan, alpha=float(lubricant.pressure_viscosity), Z=np.nan,
@@ -193,13 +195,10 @@ class FrictionModel:
         and roller speeds 0, no film; ``start`` is not used.
         """
         g = self.geometry
-        X, Cen, Ax = raw["frames"].X, raw["frames"].Cen, raw["frames"].Ax
-        q = raw["line_load"]
-        n = g.n_slices
         pb = self.problem(op, raw, start)
         case, settings, wR, psi, wi, static, source, load = (pb.case, pb.settings, pb.wR, pb.psi, pb.wi, pb.static,
                                                               pb.source, pb.load)
-        par, film = case.par, case.film
+        par = case.par
         totals = np.zeros(NEV)
         # cage pocket friction on each roller, force along v', and with skew the lateral raceway
         # tractions (sim.physics.friction.cage_pocket_loads): the friction loads the quasi-static
@@ -210,18 +209,7 @@ class FrictionModel:
         psi[:] = psi[source]
         roller_loads[:] = roller_loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
-        j = int(np.argmax(load))
-        v_roll = np.zeros((2, n))
-        v_ring = np.zeros((2, n))
-        for s in range(2):
-            Om = -wc if s == 0 else wi - wc
-            v_roll[s] = wR[j] * (Ax[j, 1] * (X[j, s, :, 0] - Cen[j, 0]) - Ax[j, 0] * (X[j, s, :, 1] - Cen[j, 1]))
-            v_ring[s] = Om * X[j, s, :, 0]
-        loaded = film.p0[j] > 0.0
-        srr = np.where(loaded, 2.0 * (v_roll - v_ring) / (v_roll + v_ring), np.nan)   # eq. (2.25)
-        film_um = np.where(loaded, film.h[j] * UM_PER_MM, np.nan)
-        kmax = np.argmax(q[j], axis=1)
-        lam = np.array([film.h[j, s, kmax[s]] / par.sigma for s in range(2)])
+        srr, film_um, lam = film_outputs(case, load, wc, wR, wi)
         if static:   # power / speed is the same at any speed (Coulomb friction): that of the nominal speed
             components = power / wi
             skew_sliding = totals[EV_PSKEW] / wi
@@ -247,3 +235,25 @@ class FrictionModel:
             "kinematics": (wc, wR.copy(), psi.copy(), pb.jac),
         } | ({"roller_skew": np.degrees(psi), "skew_sliding": float(skew_sliding)} if par.skew else {})
 
+
+def film_outputs(case, load, wc, wR, wi):
+    """Slide-to-roll ratio (2.25) [1] and film thickness [um] along the most loaded roller (race,
+    slice; NaN where unloaded) and the specific film thickness at its most loaded slices (race,)
+    [1], from a FrictionCase with its film at cage speed wc, roller speeds wR (Z,) and inner-ring
+    speed wi [rad/s]; ``load`` (Z,): roller loads that pick the most loaded roller."""
+    X, Cen, Ax = case.frames.X, case.frames.Cen, case.frames.Ax
+    film, q = case.film, case.bearing.q
+    n = q.shape[2]
+    j = int(np.argmax(load))
+    v_roll = np.zeros((2, n))
+    v_ring = np.zeros((2, n))
+    for s in range(2):
+        Om = -wc if s == 0 else wi - wc
+        v_roll[s] = wR[j] * (Ax[j, 1] * (X[j, s, :, 0] - Cen[j, 0]) - Ax[j, 0] * (X[j, s, :, 1] - Cen[j, 1]))
+        v_ring[s] = Om * X[j, s, :, 0]
+    loaded = film.p0[j] > 0.0
+    srr = np.where(loaded, 2.0 * (v_roll - v_ring) / (v_roll + v_ring), np.nan)   # eq. (2.25)
+    film_um = np.where(loaded, film.h[j] * UM_PER_MM, np.nan)
+    kmax = np.argmax(q[j], axis=1)
+    lam = np.array([film.h[j, s, kmax[s]] / case.par.sigma for s in range(2)])
+    return srr, film_um, lam

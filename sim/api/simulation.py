@@ -27,13 +27,14 @@ from collections import OrderedDict
 from omegaconf import OmegaConf
 
 from sim.api.bearing_model import BearingModel, SolverSettings, case_results
+from sim.api import dynamic_model
 from sim.api.cases import operating_points
 from sim.api.friction_model import FrictionModel
 from sim.api.processes import worker_pool
 from sim.api.schema import validate
 from sim.errors import InputError
 from sim.geometry import Geometry
-from sim.io import DesignFailure, DesignResult, build_batch_dataset, build_dataset
+from sim.io import DesignFailure, DesignResult, build_batch_dataset, build_dataset, build_dynamic_dataset
 from sim.physics.lubricant import Lubricant
 
 CACHE_SIZE = 128                      # configurations whose YAML and models are kept
@@ -193,8 +194,32 @@ def simulate(cfg):
     xarray.Dataset
         The result following DATA.md, dims ``design`` (1) and ``case``.
     """
-    model, ops, results, plain = _solve_design(cfg)
+    plain = resolved(cfg)
+    if plain["solver"]["name"] == "dynamic":
+        return _simulate_dynamic(cfg, plain)
+    model, ops, results, plain = _solve_design(cfg, plain=plain)
     return build_dataset(model.geometry, ops, results, config_yaml(cfg, plain), model.settings)
+
+
+def _simulate_dynamic(cfg, plain):
+    """:func:`simulate` with ``solver=dynamic``: one load case through the time-domain solver
+    (:mod:`sim.api.dynamic_model`), its time series and steady state (sim.io.build_dynamic_dataset)."""
+    model, friction = build_models(cfg, plain)   # validates first
+    ops = operating_points(plain["load"])
+    if len(ops) != 1:
+        raise InputError(f"solver=dynamic runs one load case per call, the load gives {len(ops)}: use --multirun "
+                         "over the load values")
+    if friction is None or ops[0].speed_rpm == 0.0:
+        raise InputError("solver=dynamic needs friction.enabled = true and load.speed > 0 (the rollers and the "
+                         "cage are driven by the traction)")
+    op = ops[0]
+    model.check_limits(op)
+    t0 = time.perf_counter()
+    dyn = plain["solver"]["dynamic"]
+    dcase = dynamic_model.prepare(model, friction, op, dyn)
+    integ = dynamic_model.run(dcase)
+    summary, series = dynamic_model.outputs(model, op, dcase, integ, time.perf_counter() - t0, plain["output"])
+    return build_dynamic_dataset(model.geometry, op, summary, series, config_yaml(cfg, plain), model.settings, dyn)
 
 
 # ------------------------------------------------------------------ many designs in worker processes

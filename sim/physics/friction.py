@@ -520,6 +520,46 @@ def roller_friction(j, wR, psi, wc, wi, case, ev):
     """Friction of roller j at roller speed wR [rad/s], skew psi [rad] and cage speed wc [rad/s],
     inner-ring speed wi [rad/s], film and frames of ``case`` (:data:`FrictionCase`): fills ``ev`` (NEV,).
 
+    The raceway and rib tractions (:func:`roller_traction`), the drag (:func:`roller_drag`) and
+    the pocket friction (:func:`pocket_friction`) under the quasi-static pocket force, the
+    tangential force F_cage = F_D - F_t that holds the roller on its orbit at the cage speed.
+    """
+    roller_traction(j, wR, psi, wc, wi, case, ev)
+    FD = roller_drag(wc, case.frames.Cen[j, 0], case.par, ev)
+    pocket_friction(FD - ev[EV_FT], wR, case.par, case.bearing.rho_m, ev)
+
+
+@kernel
+def roller_drag(wc, rc, par, ev):
+    """Oil drag on a roller orbiting at wc [rad/s] with its centre at radius rc [mm] (module
+    docstring; reacted by the housing = outer ring): adds its z-moments and power to ``ev`` and
+    returns the drag force F_D [N], acting on the roller along -e_t."""
+    FD = par.drag_k * wc * wc
+    ev[EV_TZ] -= FD * rc
+    ev[EV_TOUT] += FD * rc
+    ev[EV_DRAG] += FD * wc * rc
+    return FD
+
+
+@kernel
+def pocket_friction(F_cage, wR, par, rho_m, ev):
+    """Cage pocket friction on a roller spinning at wR [rad/s] that the pocket pushes with the
+    tangential force F_cage [N] (module docstring): the moment mu_c |F_cage| rho_m [N mm] against
+    the spin (rho_m the roller radius in the pocket [mm]) into ``ev`` with its power; returns the
+    pocket friction force along v', mu_c F_cage sign(omega_R) [N] (a meridian-plane load)."""
+    Pc = par.mu_cage * abs(F_cage) * rho_m
+    ev[EV_MU] -= Pc if wR > 0.0 else -Pc
+    ev[EV_CAGE] += Pc * abs(wR)
+    return par.mu_cage * F_cage * np.sign(wR)
+
+
+@kernel
+def roller_traction(j, wR, psi, wc, wi, case, ev):
+    """Raceway and rib tractions and rolling resistance of roller j, orbiting at wc [rad/s], at
+    roller speed wR [rad/s], skew psi [rad], inner-ring speed wi [rad/s] (film and frames of
+    ``case``): fills ``ev`` (NEV,) without drag and cage pocket (:func:`roller_friction` adds them;
+    the dynamic solver its own pocket force).
+
     ev: moment about the roller axis [N mm], z-moment of the contacts on the roller [N mm],
     z-moment on the outer ring [N mm], tangential contact force [N], then the powers [N mm/s]
     of COMPONENTS, then the friction moment about the skew axis (without the pocket couple,
@@ -669,16 +709,6 @@ def roller_friction(j, wR, psi, wc, wi, case, ev):
             phi = psi * case.bearing.x_end / (Xrib[j, 0] - case.bearing.R_end * nr)
             ev[EV_MS] -= Qrib[j] * phi * (Xrib[j, 0] * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
             ev[EV_FT] -= Qrib[j] * phi * nr
-    # drag on the roller (reacted by the housing = outer ring) and the cage pocket force
-    FD = par.drag_k * wc * wc
-    rc = cr
-    ev[EV_TZ] -= FD * rc
-    ev[EV_TOUT] += FD * rc
-    ev[EV_DRAG] += FD * wc * rc
-    Fcage = FD - ev[EV_FT]
-    Pc = par.mu_cage * abs(Fcage) * case.bearing.rho_m
-    ev[EV_MU] -= Pc if wR > 0.0 else -Pc
-    ev[EV_CAGE] += Pc * abs(wR)
 
 
 @kernel
@@ -697,8 +727,8 @@ def cage_pocket_loads(wR, psi, wc, wi, active, case, loads):
             loads[j, a] = 0.0
         if not active[j]:
             continue
-        roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
-        F_cage = par.drag_k * wc * wc - ev[EV_FT]
+        roller_traction(j, wR[j], psi[j], wc, wi, case, ev)
+        FD = roller_drag(wc, case.frames.Cen[j, 0], par, ev)
         loads[j, 0] = ev[EV_FU]
-        loads[j, 1] = par.mu_cage * F_cage * np.sign(wR[j]) + ev[EV_FV]
+        loads[j, 1] = pocket_friction(FD - ev[EV_FT], wR[j], par, case.bearing.rho_m, ev) + ev[EV_FV]
         loads[j, 2] = ev[EV_MW]

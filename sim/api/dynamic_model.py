@@ -1,0 +1,237 @@
+"""One load case through the time-domain solver (:mod:`sim.solvers.dynamic`): the problem from
+the config, the start from the quasi-static solution, the run, and its outputs in output units.
+
+Start: the combined quasi-static solution of the case (load distribution, traction kinematics,
+the friction loads fed back once, as :func:`sim.api.simulation.solve_case`): roller poses and
+inner-ring displacement; speeds and skews either of that solution
+(``solver.dynamic.start = quasi_static``) or of rolling without slip and no skew (``rolling``,
+eqs. 2.20, 2.22), from which the rollers and the cage must find their traction and skew balance
+themselves.
+"""
+from collections import namedtuple
+
+import numpy as np
+
+from sim.api.bearing_model import case_results
+from sim.api.friction_model import film_outputs
+from sim.physics.friction import lubrication_state
+from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
+from sim.solvers.dynamic import (ETA, HR, NCAGE, NRING, NS, PHI, PSI,
+                                 RO_FP, RO_QI, RO_QO, RO_QRIB, RO_WR, THETA, TO_DAMP, TO_P0, TO_TIN, TO_TOUT, WPHI,
+                                 XI, DynamicBody, DynamicProblem, DynamicSettings, Integration, roller_axis,
+                                 state_size)
+
+KG_TO_T = 1e-3              # mass: 1 kg = 1e-3 t (kernel units t, mm, s, N)
+KG_M2_TO_T_MM2 = 1e3        # inertia: 1 kg m^2 = 1e-3 t x 1e6 mm^2
+W_PER_N_MM_PER_S = 1e-3
+RPM_PER_RAD_S = 30.0 / np.pi
+
+# A dynamic case ready to run: the problem (sim.solvers.dynamic), its settings, the start state
+# y0, the quasi-static result of the case (FrictionModel.evaluate outputs in output units and the
+# roller loads Q (Z, 2) [N], for comparison) and its loaded rollers.
+DynamicCase = namedtuple("DynamicCase", ["problem", "settings", "y0", "quasi_static", "active"])
+
+
+def body_and_state(model, friction, op, dyn, raw, kin):
+    """:data:`DynamicBody`, start state and roller speeds [rad/s] of one case (module docstring)."""
+    g = model.geometry
+    a = g.arrays
+    Z = g.Z
+    par = friction.problem(op, raw, start=kin).case.par
+    wi = float(angular_speed(op.speed_rpm))
+    wc, wR, psi = kin[0], kin[1].copy(), kin[2].copy()
+    if str(dyn["start"]) == "rolling":
+        wc = float(angular_speed(cage_speed_rolling(op.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha)))
+        wR[:] = float(angular_speed(roller_speed_rolling(op.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha)))
+        psi[:] = 0.0
+    m = float(a["mass"])
+    k_pocket = 2.0 * friction.pocket_stiffness   # both roller ends
+    zeta_p = float(dyn["pocket_damping_ratio"])
+    Iy = float(a["inertia_transverse"])
+    body = DynamicBody(
+        m=m, Ix=float(a["inertia_axial"]), Iy=Iy, m_ring=KG_TO_T * float(dyn["inner_ring_mass"]),
+        I_cage=KG_M2_TO_T_MM2 * float(dyn["cage_inertia"]), r_pocket=0.5 * g.Dpw, k_pocket=k_pocket,
+        # damper of a ratio zeta on a mass-spring k, m: c = 2 zeta sqrt(k m) (any vibration text)
+        c_pocket=2.0 * zeta_p * np.sqrt(k_pocket * m),
+        half_play=0.5 * friction.pocket_clearance, pocket_transition=float(dyn["pocket_transition"]),
+        c_skew=2.0 * zeta_p * np.sqrt(par.skew_stiffness * Iy), beta=0.0, Fa=float(op.Fa), Fr=float(op.Fr), wi=wi,
+        skew=bool(par.skew), friction=True)
+    y0 = np.zeros(state_size(Z))
+    for j in range(Z):
+        o = j * NS
+        xi, eta, theta = raw["poses"][j]
+        y0[o + XI] = xi
+        y0[o + ETA] = eta
+        y0[o + THETA] = theta
+        y0[o + PSI] = psi[j] if body.skew else 0.0
+        y0[o + PHI] = 2.0 * np.pi * j / Z
+        y0[o + WPHI] = wc
+        A = roller_axis(theta, y0[o + PSI], g.alpha)
+        # omega = wc e_z + wR u'': H = I_x omega_a u'' + I_y (omega - omega_a u'')
+        omega = np.array([0.0, 0.0, wc]) + wR[j] * A[0]
+        wa = omega @ A[0]
+        y0[o + HR:o + HR + 3] = body.Ix * wa * A[0] + Iy * (omega - wa * A[0])
+    o_ring = Z * NS
+    y0[o_ring] = raw["ring"][0]
+    y0[o_ring + 1] = raw["ring"][1]
+    y0[o_ring + NRING + 1] = wc
+    return body, y0, wR
+
+
+
+def quasi_static_start(model, friction, op):
+    """The combined quasi-static solution of one case (as :func:`sim.api.simulation.solve_case`):
+    (raw solve output, friction evaluation); RuntimeError when it does not converge."""
+    raw = model.solve(op)
+    if not raw["converged"]:
+        raise RuntimeError(f"the quasi-static start of the dynamic run did not converge at {op}")
+    fr = friction.evaluate(op, raw)
+    raw = model.solve(op, roller_loads=fr["roller_loads"], start=raw)
+    fr = friction.evaluate(op, raw, start=fr["kinematics"])
+    if not (raw["converged"] and fr["friction_converged"]):
+        raise RuntimeError(f"the quasi-static start of the dynamic run did not converge at {op}")
+    return raw, fr
+
+
+def prepare(model, friction, op, dyn):
+    """:data:`DynamicCase` of one operating point (``dyn``: the solver.dynamic config node)."""
+    g = model.geometry
+    raw, fr = quasi_static_start(model, friction, op)
+    kin = fr["kinematics"]
+    body, y0, wR = body_and_state(model, friction, op, dyn, raw, kin)
+    pb = friction.problem(op, raw, start=kin)
+    case = pb.case
+    # the run updates frames, line loads and rib data in place: its own copies
+    frames = type(case.frames)(*(np.array(x, copy=True) for x in case.frames))
+    bearing = case.bearing._replace(q=case.bearing.q.copy(), Qrib=case.bearing.Qrib.copy(),
+                                    nrib=case.bearing.nrib.copy())
+    case = case._replace(frames=frames, bearing=bearing)
+    problem = DynamicProblem(model.bearing, model.elasticity, case, body)
+    refresh_film(problem, y0, wR, raw["Q"].sum(axis=1) > 0.0)
+    # contact damping: ratio zeta at the roller's normal contact frequency sqrt(k / m), k the
+    # exact contact stiffness along v' of the start state; beta = 2 zeta / omega (Rayleigh)
+    probe = Integration(problem, None)
+    probe.f(0.0, y0)
+    k_n = float(probe.work.K[1, 1])
+    omega_n = np.sqrt(k_n / body.m)
+    body = body._replace(beta=2.0 * float(dyn["contact_damping_ratio"]) / omega_n)
+    problem = problem._replace(body=body)
+    settings = integration_settings(g, op, body, raw, fr, dyn, omega_n)
+    return DynamicCase(problem, settings, y0, fr | {"Q": raw["Q"]}, raw["Q"].sum(axis=1) > 0.0)
+
+
+def integration_settings(g, op, body, raw, fr, dyn, omega_n):
+    """:data:`DynamicSettings` of one case: tolerances and the state scales.
+
+    Scales (absolute tolerance atol = rtol x scale, and the floor of the finite-difference
+    steps): roller and ring positions by the inner ring's axial displacement (the contact
+    approach, ~10 um), their rates by that times the contact frequency, angles by it over Lwe,
+    orbit and cage angles by 1 rad, speeds by the cage speed, momenta by I_x times the roller
+    speed, energies by the torque times the inner-ring turn of one window.
+    """
+    Z = g.Z
+    delta = max(abs(raw["ring"][0]), abs(raw["ring"][1]))
+    wc = float(fr["kinematics"][0])
+    wR = float(np.abs(fr["kinematics"][1]).max())
+    window = float(dyn["window_revolutions"]) * 2.0 * np.pi / body.wi
+    scale = np.zeros(state_size(Z))
+    per_roller = np.zeros(NS)
+    per_roller[[XI, ETA]] = delta
+    per_roller[[XI + 3, ETA + 3]] = delta * omega_n
+    per_roller[PHI] = 1.0
+    per_roller[WPHI] = wc
+    per_roller[[THETA, PSI]] = delta / g.Lwe
+    per_roller[HR:HR + 3] = body.Ix * wR
+    scale[:Z * NS] = np.tile(per_roller, Z)
+    o_ring = Z * NS
+    scale[o_ring:o_ring + 3] = delta
+    scale[o_ring + 3:o_ring + 6] = delta * omega_n
+    scale[o_ring + NRING] = 1.0
+    scale[o_ring + NRING + 1] = wc
+    scale[o_ring + NRING + NCAGE:] = abs(fr["torque"]) * body.wi * window
+    rtol = float(dyn["rtol"])
+    return DynamicSettings(str(dyn["method"]), rtol, rtol * scale, window, int(dyn["samples_per_window"]),
+                           int(dyn["max_windows"]), float(dyn["steady_tolerance_speed"]),
+                           float(dyn["steady_tolerance_torque"]), float(dyn["steady_tolerance_load"]),
+                           float(dyn["steady_tolerance_skew"]), scale)
+
+
+def run(dcase):
+    """Integrate a :data:`DynamicCase` (film refreshed before every window at the current
+    loads and speeds): the finished :class:`sim.solvers.dynamic.Integration`."""
+    problem = dcase.problem
+
+    def refresh(y, rol):
+        refresh_film(problem, y, np.ascontiguousarray(rol[:, RO_WR]), (rol[:, RO_QO] + rol[:, RO_QI]) > 0.0)
+
+    return Integration(problem, dcase.settings, refresh).run(dcase.y0)
+
+
+def refresh_film(problem, y, wR, active):
+    """Film of the problem's FrictionCase at the loads and frames it holds, the roller speeds wR
+    (Z,) and the cage speed of y [rad/s] (:func:`sim.physics.friction.lubrication_state`)."""
+    o_cage = problem.bearing.Z * NS + NRING
+    lubrication_state(wR, float(y[o_cage + 1]), problem.body.wi, active, problem.case)
+
+
+
+def outputs(model, op, dcase, integ, wall_time, output_cfg):
+    """(summary, series): the steady-state summary as :func:`sim.api.bearing_model.case_results`
+    plus the friction outputs (means over the last window, output units), and the time series
+    (output units; sim.io.SERIES_VARIABLES)."""
+    g = model.geometry
+    Z = g.Z
+    body = dcase.problem.body
+    o_ring = Z * NS
+    o_cage = o_ring + NRING
+    y = integ.y
+    rol = integ.rol_t
+    tot = integ.tot_t
+    last = integ.last_window
+    roller = y[:, :o_ring].reshape(len(integ.t), Z, NS)
+    series = {
+        "time": integ.t,
+        "roller_skew": np.degrees(roller[:, :, PSI]),
+        "roller_tilt": np.degrees(roller[:, :, THETA]),
+        "roller_xi": roller[:, :, XI],
+        "roller_eta": roller[:, :, ETA],
+        "roller_speed": rol[:, :, RO_WR] * RPM_PER_RAD_S,
+        "roller_orbit_speed": roller[:, :, WPHI] * RPM_PER_RAD_S,
+        "Q": np.stack([rol[:, :, RO_QO], rol[:, :, RO_QI]], axis=-1),
+        "Q_rib": rol[:, :, RO_QRIB],
+        "pocket_force": rol[:, :, RO_FP],
+        "cage_speed": y[:, o_cage + 1] * RPM_PER_RAD_S,
+        "ring_displacement": y[:, o_ring:o_ring + 2],
+        "torque": tot[:, TO_TOUT],
+        "drive_torque": tot[:, TO_TIN],
+        "torque_component": tot[:, TO_P0:TO_DAMP] / body.wi,
+        "power_loss": tot[:, TO_P0:TO_DAMP].sum(axis=1) * W_PER_N_MM_PER_S,
+    }
+    # steady state: the loads at the end state for the load-derived outputs, the last window's means
+    yl = y[-1]
+    q = dcase.problem.case.bearing.q.copy()
+    raw = dict(converged=bool(integ.steady), iterations=int(integ.windows), wall_time=wall_time,
+               ring=yl[o_ring:o_ring + 2].copy(), poses=roller[-1][:, [XI, ETA, THETA]].copy(), line_load=q,
+               pressure=model.hertz_pressure(q), Q=rol[-1][:, [RO_QO, RO_QI]], Q_rib=rol[-1][:, RO_QRIB],
+               residual=np.zeros(2))
+    summary = case_results(model, op, raw, output_cfg)
+    if not integ.steady:
+        return summary, series
+    power = tot[last, TO_P0:TO_DAMP].mean(axis=0)
+    torque = float(tot[last, TO_TOUT].mean())
+    # film outputs at the end state, with the film of the last window
+    srr, film_um, lam = film_outputs(dcase.problem.case, rol[-1][:, RO_QO] + rol[-1][:, RO_QI], float(yl[o_cage + 1]),
+                                     rol[-1][:, RO_WR], body.wi)
+    summary.update(
+        srr=srr, film_thickness=film_um, lambda_ratio=lam,
+        Q=rol[last][:, :, [RO_QO, RO_QI]].mean(axis=0),
+        Q_rib=rol[last][:, :, RO_QRIB].mean(axis=0),
+        roller_tilt=np.degrees(roller[last][:, :, THETA].mean(axis=0)),
+        roller_skew=np.degrees(roller[last][:, :, PSI].mean(axis=0)),
+        torque=torque,
+        # breakdown in proportion to each mechanism's power (as the quasi-static result)
+        torque_component=torque * power / power.sum(),
+        power_loss=float(power.sum()) * W_PER_N_MM_PER_S,
+        cage_speed=float(y[last, o_cage + 1].mean()) * RPM_PER_RAD_S,
+    )
+    return summary, series

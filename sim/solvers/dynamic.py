@@ -1,0 +1,582 @@
+"""Time-domain multibody solver: inner ring, Z rollers and cage (issue 18 item 2; mm, N, t, s, rad).
+
+Bodies and degrees of freedom
+-----------------------------
+- Inner ring: prescribed spin speed omega_i about z; translation (delta_a along +z, delta_x,
+  delta_y) with mass m_ring under the external Fa (+z) and Fr (+x); no tilt (an imposed tilt is
+  not part of the dynamic model). The outer ring is fixed.
+- Roller j, 6 DOF, in the meridian plane through its centre at azimuth phi_j:
+  translations xi, eta (the quasi-static solver's coordinates along the nominal roller axes u, v
+  of the meridian plane, :mod:`sim.solvers.quasi_static`) and phi_j (orbit); rotations: tilt
+  theta (in the meridian plane), skew psi (about v', out of the meridian plane) and spin. The
+  roller is axisymmetric: its spin angle is cyclic and never enters (only the spin rate does),
+  so the orientation needed is its axis u'' = cos(psi) u'(theta) + sin(psi) e_t, with
+  u'(theta) as in :func:`sim.physics.contact.roller_axes`. This two-angle chart of the unit
+  sphere relative to the orbiting meridian frame is singular only at |psi| = 90 deg (u'' along
+  e_t); the cage pocket bounds the skew to about its clearance (0.1-1 deg), so the chart is
+  regular over the whole motion. The rotational state is the angular momentum H (components on
+  e_r, e_t, e_z of the roller's meridian frame), not angle rates: H = I_x (omega.u'') u'' +
+  I_y (omega - (omega.u'') u''), exact for an axisymmetric rigid body.
+- Cage: planar rotation phi_c, omega_c (no radial motion: the pocket forces of a purely
+  axially loaded bearing cancel radially; a radially guided cage is not modelled).
+
+Equations (exact rigid-body dynamics, no small-angle step):
+- roller centre in cylindrical coordinates (r, phi, z): m (r'' - r phi'^2) = F_r,
+  m (r phi'' + 2 r' phi') = F_t, m z'' = F_z (centrifugal and Coriolis terms included);
+- Euler's law in the meridian frame, which turns at phi' about z: dH/dt = M - phi' e_z x H.
+  The gyroscopic moments of the spinning, orbiting roller are part of it: at steady orbit the
+  contacts must supply M = phi' e_z x H = phi' u_r (I_x omega_a - I_y phi' u_z) e_t, whose
+  first term I_x omega_R omega_c sin(alpha) is the gyroscopic moment of Harris & Kotzalas
+  (2007, Advanced Concepts, ch. 2, roller gyroscopic moment) that the quasi-static solver
+  applies (MODEL.md 4);
+- axis kinematics: with Omega = omega - phi' e_z (rate relative to the meridian frame),
+  theta' cos(psi) = Omega . w'' and psi' = Omega . v', w'' = u'' x v';
+- without skew (``body.skew`` false, as the quasi-static solver without friction.skew) psi = 0
+  is a constraint: the pocket supplies the couple lambda v' that keeps H.v' = I_y phi' v'_z
+  (lambda from the derivative of that identity), and the cage takes its reaction;
+- inner ring: m_ring delta'' = F_ext + sum of the contact forces of the rollers.
+
+Loads (every formula is a physics kernel; this module only assembles them):
+- normal contact: :func:`sim.physics.roller_contact.roller_contact` at the roller's pose
+  (xi, eta, theta) and the inner ring's displacement projected on the roller's meridian plane
+  (the load distribution stays planar in the skew, as in the quasi-static skew model); contact
+  damping: stiffness-proportional (Rayleigh) damping on the contact's own exact tangent
+  stiffness K, f_d = -beta K dy/dt in the contact chart y = (a, b, theta, delta_a, delta_r),
+  a damping ratio zeta = beta omega / 2 at a contact frequency omega (``body.beta``, config);
+- raceway and rib traction, rolling resistance and drag: :func:`sim.physics.friction.roller_traction`
+  with the roller's own orbit speed phi'_j in place of the cage speed and its own spin and skew
+  (2-D slip per slice with skew), :func:`sim.physics.friction.roller_drag`; the film (thickness,
+  load share, rolling forces, Hertz data, thermal viscosity) is held fixed over a window and
+  refreshed between windows (:func:`sim.physics.friction.lubrication_state`, as the
+  quasi-static kinematics hold it over a Newton solve). The slip omits the roller's own
+  translation and tilt/skew rates (micrometres per second against metres per second at the
+  steady state);
+- cage pocket: circumferential penalty at the pitch radius, force -k (|g| - c/2) sign(g) beyond
+  the half play c/2 plus a damper while in contact (never pulling), both set in smoothly over a
+  transition depth (a roller resting on its pocket with a few hundredths of a newton sits there:
+  a kink in the force made the integrator's steps 100x shorter), its friction
+  (:func:`sim.physics.friction.pocket_friction`), and with skew the pocket couple
+  (:func:`sim.physics.friction.pocket_skew_couple`) with a damper of the same ratio.
+
+Energy channels (quadrature states, for the power balance): work of the drive and the external
+loads, friction dissipation (the kernels' loss powers), contact damping, elastic energy of the
+contacts, and the pocket's work (spring, damper, skew constraint).
+"""
+from collections import namedtuple
+
+import numpy as np
+from scipy.integrate import solve_ivp
+from threadpoolctl import threadpool_limits
+
+from sim._math.jit import kernel
+from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_TOUT, EV_TZ, NC, NEV,
+                                  pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
+from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
+
+# State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
+# theta, psi [rad], H_r, H_t, H_z [t mm^2/s = N mm s]; then the inner ring (delta_a, delta_x,
+# delta_y [mm], their rates [mm/s]), the cage (phi_c [rad], omega_c [rad/s]) and the energy
+# channels [N mm] (module docstring).
+XI, ETA, PHI, VXI, VETA, WPHI, THETA, PSI, HR, HT, HZ = range(11)
+NS = 11
+NRING = 6
+NCAGE = 2
+E_IN, E_DISS, E_DAMP, E_ELASTIC, E_POCKET = range(5)
+NE = 5
+
+# Per-roller outputs of :func:`rhs` (``rol``, Z x NRO): outer, inner raceway and rib loads [N],
+# pocket force on the roller along e_t [N], spin omega_R relative to the orbit [rad/s].
+RO_QO, RO_QI, RO_QRIB, RO_FP, RO_WR = range(5)
+NRO = 5
+# Bearing outputs of :func:`rhs` (``tot``): torque on the outer ring [N mm], drive torque of the
+# inner ring [N mm], then the loss powers of sim.physics.friction.COMPONENTS [N mm/s], then the
+# damping power (contacts and pocket) [N mm/s].
+TO_TOUT, TO_TIN = 0, 1
+TO_P0 = 2
+TO_DAMP = TO_P0 + NC
+NTO = TO_DAMP + 1
+
+# Bodies and parameters of one dynamic case (numba-supported named tuple):
+DynamicBody = namedtuple("DynamicBody", [
+    "m",          # t, roller mass
+    "Ix",         # t mm^2, roller moment of inertia about its axis
+    "Iy",         # t mm^2, about a transverse axis through its centre
+    "m_ring",     # t, inner ring (and what moves with it)
+    "I_cage",     # t mm^2, cage about the bearing axis
+    "r_pocket",   # mm, radius of the pocket contact (pitch radius)
+    "k_pocket",   # N/mm, circumferential pocket stiffness (both roller ends)
+    "c_pocket",   # N s/mm, its damper
+    "half_play",  # mm, circumferential half play of a roller in its pocket
+    "pocket_transition",  # mm, depth over which the pocket contact's stiffness and damping set in
+    "c_skew",     # N mm s/rad, damper of the pocket skew couple
+    "beta",       # s, stiffness-proportional contact damping
+    "Fa",         # N, axial load on the inner ring along +z
+    "Fr",         # N, radial load on the inner ring along +x
+    "wi",         # rad/s, inner-ring speed
+    "skew",       # bool, skew is free (else psi = 0 by the pocket)
+    "friction",   # bool, traction, drag and pocket friction (else normal contact and pocket only)
+])
+# Everything of a dynamic case: sim.physics.roller_contact.BearingArrays, SliceElasticity, the
+# FrictionCase (its frames, loads and film are updated in place) and the DynamicBody.
+DynamicProblem = namedtuple("DynamicProblem", ["bearing", "elasticity", "case", "body"])
+# Scratch arrays of one rhs call (sizes from n slices): poses (Z, 3), active (Z, 2, n), and the
+# contact state of one roller.
+DynamicWork = namedtuple("DynamicWork", ["poses", "active", "f", "K", "Q", "depth", "G", "d", "ribc", "ev",
+                                         "ring", "ydot", "fd"])
+
+
+def state_size(Z):
+    """Length of the state vector of Z rollers."""
+    return Z * NS + NRING + NCAGE + NE
+
+
+def empty_work(Z, n):
+    """:data:`DynamicWork` for Z rollers of n slices."""
+    return DynamicWork(np.zeros((Z, 3)), np.zeros((Z, 2, n), dtype=np.bool_), np.zeros(NY), np.zeros((NY, NY)),
+                       np.zeros(3), np.zeros(3), np.zeros((2 * n + 1, NY)), np.zeros(2 * n + 1), np.zeros(4),
+                       np.zeros(NEV), np.zeros(2), np.zeros(NY), np.zeros(NY))
+
+
+@kernel
+def roller_axis(theta, psi, alpha):
+    """Roller axis u'' and the axes v', w'' = u'' x v' (components e_r, e_t, e_z) at tilt theta
+    and skew psi [rad] (module docstring), as a (3, 3) array of rows u'', v', w''."""
+    t = alpha + theta
+    ur = np.sin(t)
+    uz = -np.cos(t)
+    cp = np.cos(psi)
+    sp = np.sin(psi)
+    A = np.empty((3, 3))
+    A[0, 0] = cp * ur
+    A[0, 1] = sp
+    A[0, 2] = cp * uz
+    A[1, 0] = -uz
+    A[1, 1] = 0.0
+    A[1, 2] = ur
+    A[2, 0] = sp * ur
+    A[2, 1] = -cp
+    A[2, 2] = sp * uz
+    return A
+
+
+@kernel
+def angular_velocity(H, A, Ix, Iy, w):
+    """Angular velocity w (3,) [rad/s] of the axisymmetric roller with momentum H and axis A[0]:
+    omega = H_a / I_x u'' + (H - H_a u'') / I_y; returns omega_a = omega . u''."""
+    Ha = H[0] * A[0, 0] + H[1] * A[0, 1] + H[2] * A[0, 2]
+    for i in range(3):
+        w[i] = Ha / Ix * A[0, i] + (H[i] - Ha * A[0, i]) / Iy
+    return Ha / Ix
+
+
+@kernel
+def rhs(y, problem, work, dy, rol, tot, ring_rows):
+    """Time derivative ``dy`` of the state ``y`` (layout above) and the outputs.
+
+    rol (Z, NRO) and tot (NTO,) are written (module constants); ring_rows (Z, NRING + NCAGE)
+    receives each roller's contribution to the derivatives of the inner-ring and cage rates
+    (the finite-difference Jacobian, :func:`jacobian`, separates the rollers by it).
+    """
+    bearing = problem.bearing
+    case = problem.case
+    body = problem.body
+    par = case.par
+    Z = bearing.Z
+    alpha = bearing.alpha
+    sa = np.sin(alpha)
+    ca = np.cos(alpha)
+    o_ring = Z * NS
+    o_cage = o_ring + NRING
+    o_en = o_cage + NCAGE
+    da = y[o_ring]
+    dxr = y[o_ring + 1]
+    dyr = y[o_ring + 2]
+    va = y[o_ring + 3]
+    vx = y[o_ring + 4]
+    vy = y[o_ring + 5]
+    wc = y[o_cage + 1]
+    m = body.m
+    Ix = body.Ix
+    Iy = body.Iy
+    f = work.f
+    K = work.K
+    ev = work.ev
+    ring = work.ring
+    ydot = work.ydot
+    fd = work.fd
+    w = np.empty(3)
+    H = np.empty(3)
+    M = np.empty(3)
+    for i in range(NTO):
+        tot[i] = 0.0
+    for i in range(NE):
+        dy[o_en + i] = 0.0
+    P_in = body.Fa * va + body.Fr * vx
+    for j in range(Z):
+        o = j * NS
+        xi = y[o + XI]
+        eta = y[o + ETA]
+        phi = y[o + PHI]
+        wphi = y[o + WPHI]
+        theta = y[o + THETA]
+        psi = y[o + PSI] if body.skew else 0.0
+        cph = np.cos(phi)
+        sph = np.sin(phi)
+        ring[0] = da
+        ring[1] = dxr * cph + dyr * sph
+        pose = work.poses[j]
+        pose[0] = xi
+        pose[1] = eta
+        pose[2] = theta
+        frames = case.frames
+        state = RollerContact(pose, case.bearing.q[j], work.active[j], f, K, work.Q, work.depth, work.G, work.d,
+                              work.ribc, ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j],
+                                                       frames.Xrib[j]))
+        roller_contact(ring, 0.0, 1.0, bearing, problem.elasticity, state)
+        ur = frames.Ax[j, 0]
+        uz = frames.Ax[j, 1]
+        vr = frames.Ax[j, 2]
+        vz = frames.Ax[j, 3]
+        r = frames.Cen[j, 0]
+        rdot = y[o + VXI] * sa + y[o + VETA] * ca
+        zdot = -y[o + VXI] * ca + y[o + VETA] * sa
+        A = roller_axis(theta, psi, alpha)
+        for i in range(3):
+            H[i] = y[o + HR + i]
+        wa = angular_velocity(H, A, Ix, Iy, w)
+        # rates relative to the meridian frame (module docstring)
+        Om0 = w[0]
+        Om1 = w[1]
+        Om2 = w[2] - wphi
+        theta_dot = (Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2]) / np.cos(psi)
+        psi_dot = Om0 * A[1, 0] + Om1 * A[1, 1] + Om2 * A[1, 2] if body.skew else 0.0
+        wR = wa - wphi * A[0, 2]
+        # contact chart rates and stiffness-proportional damping f_d = -beta K dy/dt
+        ydot[0] = rdot * ur + zdot * uz
+        ydot[1] = rdot * vr + zdot * vz
+        ydot[2] = theta_dot
+        ydot[3] = va
+        ydot[4] = vx * cph + vy * sph
+        P_el = 0.0
+        P_damp = 0.0
+        for a in range(NY):
+            s = 0.0
+            for b in range(NY):
+                s += K[a, b] * ydot[b]
+            fd[a] = -body.beta * s
+            P_el -= f[a] * ydot[a]
+            P_damp -= fd[a] * ydot[a]
+        Fr_ = (f[0] + fd[0]) * ur + (f[1] + fd[1]) * vr
+        Fz_ = (f[0] + fd[0]) * uz + (f[1] + fd[1]) * vz
+        Ft_ = 0.0
+        # moment about the centre, components (e_r, e_t, e_z); the contact moment acts about u' x v' = -e_t
+        M[0] = 0.0
+        M[1] = -(f[2] + fd[2])
+        M[2] = 0.0
+        # cage pocket: circumferential penalty and damper at the pitch radius
+        g = body.r_pocket * (phi - y[o_cage] - 2.0 * np.pi * j / Z)
+        gdot = body.r_pocket * (wphi - wc)
+        pen = abs(g) - body.half_play
+        Fp = 0.0
+        Fs = 0.0
+        if pen > 0.0:
+            sg = 1.0 if g > 0.0 else -1.0
+            # onset smooth to first order over the transition depth d_s (as MSC Adams' IMPACT
+            # function): spring k pen^2 / (2 d_s) below d_s, k (pen - d_s / 2) beyond; damper
+            # ramped in by the cubic step 3 s^2 - 2 s^3, s = pen / d_s
+            d_s = body.pocket_transition
+            ramp = 1.0
+            if pen < d_s:
+                s_ = pen / d_s
+                ramp = s_ * s_ * (3.0 - 2.0 * s_)
+                Fs = -sg * body.k_pocket * pen * pen / (2.0 * d_s)
+            else:
+                Fs = -sg * body.k_pocket * (pen - 0.5 * d_s)
+            Fp = Fs - ramp * body.c_pocket * gdot
+            if Fp * sg > 0.0:   # a damper never pulls the roller into the wall
+                Fp = 0.0
+        Ft_ += Fp
+        P_pocket = -Fp * gdot          # pocket work on the relative motion (spring + damper)
+        Tcage = -Fp * body.r_pocket     # reaction on the cage about z
+        # pocket couple about v' (skew): penalty with damper, or the skew constraint (below)
+        Cs = 0.0
+        if body.skew:
+            Cs, dCs = pocket_skew_couple(psi, par)
+            if dCs != 0.0:
+                Cs -= body.c_skew * psi_dot
+        Qo = work.Q[0]
+        Qi = work.Q[1]
+        Qr = work.Q[2]
+        if body.friction:
+            case.bearing.Qrib[j] = Qr
+            case.bearing.nrib[j, 0] = work.ribc[2]
+            case.bearing.nrib[j, 1] = work.ribc[3]
+            roller_traction(j, wR, psi, wphi, body.wi, case, ev)
+            FD = roller_drag(wphi, r, par, ev)
+            Fpf = pocket_friction(Fp, wR, par, case.bearing.rho_m, ev)
+            Ft_ += ev[EV_FT] - FD
+            Fr_ += ev[EV_FU] * ur + (ev[EV_FV] + Fpf) * vr
+            Fz_ += ev[EV_FU] * uz + (ev[EV_FV] + Fpf) * vz
+            for i in range(3):
+                M[i] += ev[EV_MU] * A[0, i] + ev[EV_MS] * A[1, i] + ev[EV_MW] * A[2, i]
+            tot[TO_TOUT] += ev[EV_TOUT]
+            tot[TO_TIN] += ev[EV_TZ] + ev[EV_TOUT]
+            for i in range(NC):
+                tot[TO_P0 + i] += ev[EV_P0 + i]
+                dy[o_en + E_DISS] += ev[EV_P0 + i]
+            P_in += body.wi * (ev[EV_TZ] + ev[EV_TOUT])
+        # translation (cylindrical coordinates: centrifugal and Coriolis terms)
+        a_r = r * wphi * wphi + Fr_ / m
+        a_z = Fz_ / m
+        phidd = (Ft_ / m - 2.0 * rdot * wphi) / r
+        dy[o + XI] = y[o + VXI]
+        dy[o + ETA] = y[o + VETA]
+        dy[o + PHI] = wphi
+        dy[o + VXI] = a_r * sa - a_z * ca
+        dy[o + VETA] = a_r * ca + a_z * sa
+        dy[o + WPHI] = phidd
+        dy[o + THETA] = theta_dot
+        dy[o + PSI] = psi_dot
+        # Euler in the meridian frame: dH/dt = M - phi' e_z x H
+        for i in range(3):
+            M[i] += Cs * A[1, i]
+        d0 = M[0] + wphi * H[1]
+        d1 = M[1] - wphi * H[0]
+        d2 = M[2]
+        if not body.skew:
+            # psi = 0 held by the pocket: lambda v' keeps H.v' = I_y phi' v'_z, dv'/dtheta = -u'
+            Hu = H[0] * ur + H[2] * uz
+            lam = Iy * (phidd * vz - wphi * uz * theta_dot) + theta_dot * Hu - (d0 * vr + d2 * vz)
+            d0 += lam * vr
+            d2 += lam * vz
+            Cs = lam
+        dy[o + HR] = d0
+        dy[o + HT] = d1
+        dy[o + HZ] = d2
+        # the pocket couple's reaction on the cage (its z-component) and its work
+        Tcage -= Cs * A[1, 2]
+        P_pocket -= Cs * (psi_dot + (wphi - wc) * A[1, 2])
+        for i in range(NRING + NCAGE):
+            ring_rows[j, i] = 0.0
+        ring_rows[j, 3] = (f[3] + fd[3]) / body.m_ring
+        ring_rows[j, 4] = (f[4] + fd[4]) * cph / body.m_ring
+        ring_rows[j, 5] = (f[4] + fd[4]) * sph / body.m_ring
+        ring_rows[j, 7] = Tcage / body.I_cage
+        rol[j, RO_QO] = Qo
+        rol[j, RO_QI] = Qi
+        rol[j, RO_QRIB] = Qr
+        rol[j, RO_FP] = Fp
+        rol[j, RO_WR] = wR
+        tot[TO_DAMP] += P_damp
+        dy[o_en + E_DAMP] += P_damp
+        dy[o_en + E_ELASTIC] += P_el
+        dy[o_en + E_POCKET] += P_pocket
+    dy[o_ring] = va
+    dy[o_ring + 1] = vx
+    dy[o_ring + 2] = vy
+    dy[o_ring + 3] = body.Fa / body.m_ring
+    dy[o_ring + 4] = body.Fr / body.m_ring
+    dy[o_ring + 5] = 0.0
+    dy[o_cage] = wc
+    dy[o_cage + 1] = 0.0
+    for j in range(Z):
+        for i in range(3):
+            dy[o_ring + 3 + i] += ring_rows[j, 3 + i]
+        dy[o_cage + 1] += ring_rows[j, 7]
+    dy[o_en + E_IN] = P_in
+
+
+
+# Relative finite-difference step of the Jacobian: sqrt of the double-precision epsilon, the
+# optimum of a forward difference (Dennis & Schnabel 1983, Numerical Methods for Unconstrained
+# Optimization, 5.4), on max(|y_i|, scale_i).
+FD_STEP = np.sqrt(np.finfo(np.float64).eps)
+
+
+@kernel
+def jacobian(y, f0, ring0, problem, work, scale, J, rol, tot):
+    """Forward-difference Jacobian J = d(rhs)/dy at y (f0 = rhs(y), ring0 its ring_rows).
+
+    A roller's derivatives depend only on its own state, the inner ring and the cage, and the
+    ring and cage rates are sums over rollers (each roller's share in ``ring_rows``): one rhs
+    call perturbing state k of every roller at once gives column k of every roller block and
+    its ring and cage rows (NS calls), and one call per ring and cage state its full column
+    (Curtis, Powell & Reid 1974 column grouping, with the coupling rows separated by roller).
+    The energy channels do not act back on the motion: their rows are left zero (a chord
+    Newton iteration for them converges with the motion).
+    """
+    Z = problem.bearing.Z
+    nst = y.shape[0]
+    o_ring = Z * NS
+    o_en = o_ring + NRING + NCAGE
+    yp = y.copy()
+    fp = np.empty(nst)
+    ring1 = np.empty((Z, NRING + NCAGE))
+    for a in range(nst):
+        for b in range(nst):
+            J[a, b] = 0.0
+    for k in range(NS):
+        for j in range(Z):
+            o = j * NS + k
+            yp[o] = y[o] + FD_STEP * max(abs(y[o]), scale[o])
+        rhs(yp, problem, work, fp, rol, tot, ring1)
+        for j in range(Z):
+            o = j * NS
+            h = yp[o + k] - y[o + k]
+            for i in range(NS):
+                J[o + i, o + k] = (fp[o + i] - f0[o + i]) / h
+            for i in range(NRING + NCAGE):
+                J[o_ring + i, o + k] = (ring1[j, i] - ring0[j, i]) / h
+            yp[o + k] = y[o + k]
+    for c in range(o_ring, o_en):
+        yp[c] = y[c] + FD_STEP * max(abs(y[c]), scale[c])
+        h = yp[c] - y[c]
+        rhs(yp, problem, work, fp, rol, tot, ring1)
+        for i in range(o_en):
+            J[i, c] = (fp[i] - f0[i]) / h
+        yp[c] = y[c]
+
+
+# Integration and steady-state settings (conf/solver/dynamic.yaml, sim.api.dynamic_model):
+# method ('Radau' or 'BDF', scipy.integrate.solve_ivp), rtol [1], atol (state vector), window
+# [s] (film refresh and steady-state window), samples per window, max_windows (time cap),
+# tol_speed, tol_torque, tol_load, tol_skew: relative changes of the window means of cage speed,
+# outer-ring torque and roller loads, and of the skews over the pocket's skew clearance, below
+# which two consecutive windows count as steady, scale (state
+# vector: finite-difference step floors, sim.api.dynamic_model).
+DynamicSettings = namedtuple("DynamicSettings", ["method", "rtol", "atol", "window", "samples", "max_windows",
+                                                 "tol_speed", "tol_torque", "tol_load", "tol_skew", "scale"])
+
+
+class Integration:
+    """Time integration of one dynamic case with film refresh and the steady-state detector.
+
+    ``refresh`` (callable(y, rol)): refreshes the film of the problem at the state y (the
+    caller's physics, :func:`sim.physics.friction.lubrication_state`) before every window.
+    After :meth:`run`: ``t`` (samples,), ``y`` (samples, state), ``rol_t`` (samples, Z, NRO),
+    ``tot_t`` (samples, NTO), ``last_window`` (sample indices of the last window), ``steady``
+    (bool), ``windows``, ``change`` (the last relative changes of speed, torque, loads),
+    ``rhs_calls``, ``jac_calls``.
+    """
+
+    def __init__(self, problem, settings, refresh=None):
+        self.problem, self.settings, self.refresh = problem, settings, refresh
+        Z, n = problem.bearing.Z, problem.bearing.x.shape[0]
+        self.Z = Z
+        self.work = empty_work(Z, n)
+        nst = state_size(Z)
+        self.rol = np.zeros((Z, NRO))
+        self.tot = np.zeros(NTO)
+        self.ring_rows = np.zeros((Z, NRING + NCAGE))
+        self.J = np.zeros((nst, nst))
+        self.rhs_calls = 0
+        self.jac_calls = 0
+
+    def f(self, t, y):
+        dy = np.empty_like(y)
+        rhs(y, self.problem, self.work, dy, self.rol, self.tot, self.ring_rows)
+        self.rhs_calls += 1
+        return dy
+
+    def jac(self, t, y):
+        f0 = self.f(t, y)
+        ring0 = self.ring_rows.copy()
+        jacobian(y, f0, ring0, self.problem, self.work, self.settings.scale, self.J, self.rol, self.tot)
+        self.jac_calls += 1
+        return self.J.copy()
+
+    def outputs(self, y):
+        """(rol, tot) at state y."""
+        self.f(0.0, y)
+        return self.rol.copy(), self.tot.copy()
+
+    def run(self, y0):
+        """Integrate window by window until two consecutive windows agree (settings) or
+        ``max_windows`` windows have run; returns self."""
+        s = self.settings
+        o_cage = self.Z * NS + NRING
+        y = np.array(y0, dtype=float)
+        ts, ys, rols, tots = [0.0], [y.copy()], [], []
+        r0, t0 = self.outputs(y)
+        rols.append(r0)
+        tots.append(t0)
+        self.steady = False
+        self.windows = 0
+        # one BLAS thread: the dense LU of the Newton matrix (~200 x 200) is 100x slower under
+        # OpenBLAS's threads on a shared machine (measured 157 ms against 0.44 ms)
+        with threadpool_limits(1):
+            self._windows(y, s, o_cage, ts, ys, rols, tots)
+        return self
+
+    def _windows(self, y, s, o_cage, ts, ys, rols, tots):
+        prev = None
+        t = 0.0
+        for w in range(s.max_windows):
+            if self.refresh is not None:
+                self.refresh(y, self.outputs(y)[0])
+            t_end = t + s.window
+            t_eval = np.minimum(t + s.window * np.arange(1, s.samples + 1) / s.samples, t_end)
+            sol = solve_ivp(self.f, (t, t_end), y, method=s.method, rtol=s.rtol, atol=s.atol, jac=self.jac,
+                            t_eval=t_eval)
+            if not sol.success:
+                raise RuntimeError(f"dynamic integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
+            self.windows = w + 1
+            for i in range(sol.t.shape[0]):
+                r, tt = self.outputs(sol.y[:, i])
+                ts.append(sol.t[i])
+                ys.append(sol.y[:, i].copy())
+                rols.append(r)
+                tots.append(tt)
+            y = sol.y[:, -1].copy()
+            t = sol.t[-1]
+            win = slice(len(ts) - sol.t.shape[0], len(ts))
+            Y = np.array(ys[win])
+            R = np.array(rols[win])
+            T = np.array(tots[win])
+            means = (Y[:, o_cage + 1].mean(), T[:, TO_TOUT].mean(), R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0),
+                     Y[:, PSI:self.Z * NS:NS].mean(axis=0))
+            if prev is not None:
+                d_speed = abs(means[0] - prev[0]) / abs(means[0])
+                d_torque = abs(means[1] - prev[1]) / max(abs(means[1]), np.finfo(float).tiny)
+                d_load = np.abs(means[2] - prev[2]).max() / np.abs(means[2]).max()
+                # skews against the pocket's skew clearance (0 without free skew)
+                d_skew = np.abs(means[3] - prev[3]).max() / self.problem.case.par.skew_clearance
+                self.change = (d_speed, d_torque, d_load, d_skew)
+                if (d_speed < s.tol_speed and d_torque < s.tol_torque and d_load < s.tol_load
+                        and d_skew < s.tol_skew):
+                    self.steady = True
+                    break
+            prev = means
+        self.t = np.array(ts)
+        self.y = np.array(ys)
+        self.rol_t = np.array(rols)
+        self.tot_t = np.array(tots)
+        self.last_window = np.arange(len(ts) - s.samples, len(ts))
+
+
+@kernel
+def kinetic_energy(y, problem):
+    """Kinetic energy of rollers, inner-ring translation and cage at state y [N mm]: rollers
+    1/2 m (r'^2 + z'^2 + r^2 phi'^2) + 1/2 H . omega; the ring's prescribed spin is left out
+    (constant)."""
+    bearing = problem.bearing
+    body = problem.body
+    Z = bearing.Z
+    sa = np.sin(bearing.alpha)
+    ca = np.cos(bearing.alpha)
+    w = np.empty(3)
+    H = np.empty(3)
+    E = 0.0
+    for j in range(Z):
+        o = j * NS
+        r = 0.5 * bearing.Dpw + y[o + XI] * sa + y[o + ETA] * ca
+        v2 = y[o + VXI] ** 2 + y[o + VETA] ** 2 + (r * y[o + WPHI]) ** 2
+        A = roller_axis(y[o + THETA], y[o + PSI] if body.skew else 0.0, bearing.alpha)
+        for i in range(3):
+            H[i] = y[o + HR + i]
+        angular_velocity(H, A, body.Ix, body.Iy, w)
+        E += 0.5 * body.m * v2 + 0.5 * (H[0] * w[0] + H[1] * w[1] + H[2] * w[2])
+    o = Z * NS
+    E += 0.5 * body.m_ring * (y[o + 3] ** 2 + y[o + 4] ** 2 + y[o + 5] ** 2)
+    E += 0.5 * body.I_cage * y[o + NRING + 1] ** 2
+    return E

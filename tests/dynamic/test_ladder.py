@@ -1,0 +1,212 @@
+"""Validation ladder of the time-domain solver (issue 18 item 4; sim/solvers/dynamic.py).
+
+Each rung can fail: a wrong sign of a Coriolis, gyroscopic or constraint term breaks the free
+body's conservation laws, a wrong contact assembly the settled loads, an inconsistency between
+the traction kernel's forces and its loss powers the power balance, and any of them the steady
+state against the quasi-static solver.
+"""
+import numpy as np
+import pytest
+
+import sim
+from sim.api import dynamic_model as dm
+from sim.api.cases import operating_points
+from sim.api.simulation import build_models, resolved
+from sim.solvers.dynamic import (E_DAMP, E_DISS, E_ELASTIC, E_IN, E_POCKET, ETA, HR, NCAGE, NRING, NS, PHI, PSI,
+                                 RO_QI, RO_QO, THETA, VETA, VXI, WPHI, XI, Integration, kinetic_energy, roller_axis)
+
+TRB = ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.speed=2000"]
+
+
+def dynamic_case(overrides):
+    cfg = sim.load_config(["solver=dynamic"] + overrides)
+    plain = resolved(cfg)
+    model, friction = build_models(cfg, plain)
+    op = operating_points(plain["load"])[0]
+    return model, friction, op, plain, dm.prepare(model, friction, op, plain["solver"]["dynamic"])
+
+
+@pytest.fixture(scope="module")
+def trb():
+    return dynamic_case(TRB + ["solver.dynamic.start=quasi_static"])
+
+
+def angular_momentum(y, problem):
+    """Inertial angular momentum of the rollers about the bearing centre [N mm s]: m c x c' + H."""
+    b, body = problem.bearing, problem.body
+    sa, ca = np.sin(b.alpha), np.cos(b.alpha)
+    L = np.zeros(3)
+    for j in range(b.Z):
+        o = j * NS
+        phi = y[o + PHI]
+        er = np.array([np.cos(phi), np.sin(phi), 0.0])
+        et = np.array([-np.sin(phi), np.cos(phi), 0.0])
+        ez = np.array([0.0, 0.0, 1.0])
+        r = 0.5 * b.Dpw + y[o + XI] * sa + y[o + ETA] * ca
+        z = -y[o + XI] * ca + y[o + ETA] * sa
+        rdot = y[o + VXI] * sa + y[o + VETA] * ca
+        zdot = -y[o + VXI] * ca + y[o + VETA] * sa
+        c = r * er + z * ez
+        v = rdot * er + r * y[o + WPHI] * et + zdot * ez
+        H = y[o + HR:o + HR + 3]
+        L += body.m * np.cross(c, v) + H[0] * er + H[1] * et + H[2] * ez
+    return L
+
+
+def test_free_rigid_bodies_conserve_energy_and_angular_momentum(trb):
+    """Rollers clear of both rings (inner ring pulled away, rollers moved inwards), no friction,
+    no pocket, skew free: each roller flies and tumbles freely; with a transverse spin component
+    it precesses and nutates (tilt and skew both move). Kinetic energy and the inertial angular
+    momentum must stay constant to the integrator tolerance: rtol 1e-9 gives a local error of
+    1e-9, over ~1e3 steps a global drift below 1e-6, so 1e-6 relative (a wrong gyroscopic or
+    Coriolis term gives order-1 errors)."""
+    model, friction, op, plain, dc = trb
+    problem = dc.problem
+    par = problem.case.par._replace(skew_clearance=10.0)          # no pocket couple
+    body = problem.body._replace(friction=False, skew=True, half_play=1e6, Fa=0.0, Fr=0.0)
+    problem = problem._replace(case=problem.case._replace(par=par), body=body)
+    Z = problem.bearing.Z
+    y0 = dc.y0.copy()
+    rng = np.random.default_rng(18)
+    for j in range(Z):
+        o = j * NS
+        y0[o + ETA] -= 1.0                                  # 1 mm inwards
+        y0[o + WPHI] = 2.0                                  # slow orbit: stays clear over the run
+        y0[o + VXI] = 0.5 * rng.standard_normal()
+        A = roller_axis(y0[o + THETA], 0.0, problem.bearing.alpha)
+        omega = 300.0 * A[0] + 1.0 * rng.standard_normal(3)   # spin plus a tumbling component [rad/s]
+        wa = omega @ A[0]
+        y0[o + HR:o + HR + 3] = body.Ix * wa * A[0] + body.Iy * (omega - wa * A[0])
+    y0[Z * NS] = -10.0                                      # inner ring 10 mm away along -z
+    scale = np.abs(y0) + 1e-3
+    settings = dc.settings._replace(rtol=1e-9, atol=1e-12 * scale, window=0.01, samples=20, max_windows=1)
+    integ = Integration(problem, settings).run(y0)
+    assert np.all(integ.rol_t[:, :, [RO_QO, RO_QI]] == 0.0), "a roller touched a ring: not a free body"
+    tilt = integ.y[:, THETA::NS][:, :Z]
+    skew = integ.y[:, PSI::NS][:, :Z]
+    assert np.ptp(tilt) > 1e-3 and np.ptp(skew) > 1e-3, "no tumbling: the test would not see the coupling"
+    E = np.array([kinetic_energy(y, problem) for y in integ.y])
+    L = np.array([angular_momentum(y, problem) for y in integ.y])
+    assert np.abs(E / E[0] - 1.0).max() < 1e-6
+    assert np.abs(L - L[0]).max() / np.linalg.norm(L[0]) < 1e-6
+
+
+def test_loaded_rollers_settle_to_the_quasi_static_loads(trb):
+    """No friction, the inner ring held at its quasi-static position (a ring mass of 1e9 t):
+    every roller, started 20 % of the ring's contact approach off its equilibrium, must settle
+    through its damped contacts to the quasi-static loads of the same case (without friction
+    loads) within 1 % (issue 18). The remaining model differences are the centrifugal force at
+    the actual radius and the exact gyroscopic moment (1e-4 of the loads). Each roller is
+    independent with the ring held, so this is the one-roller rung Z times over.
+    (With the ring free, its axial mode on the contacts, ~3.5 kHz for 1 kg, is damped only
+    0.8 % by the stiffness-proportional contact damping and rings for ~10 ms.)"""
+    model, friction, op, plain, dc = trb
+    problem = dc.problem
+    body = problem.body._replace(friction=False, m_ring=1e9)
+    problem = problem._replace(body=body)
+    ref = model.solve(op)
+    Z = problem.bearing.Z
+    y0 = dc.y0.copy()
+    delta = abs(ref["ring"][0])
+    y0[Z * NS:Z * NS + 2] = ref["ring"]
+    for j in range(Z):
+        y0[j * NS + ETA] += 0.2 * delta
+    settings = dc.settings._replace(window=2e-3, samples=20, max_windows=1)
+    integ = Integration(problem, settings).run(y0)
+    Q = integ.rol_t[-1][:, [RO_QO, RO_QI]]
+    Q_start = integ.rol_t[0][:, [RO_QO, RO_QI]]
+    assert np.abs(Q_start / ref["Q"] - 1.0).max() > 0.1, "the start must be off the equilibrium"
+    err = np.abs(Q / ref["Q"] - 1.0).max()
+    print(f"settled roller loads against quasi-static: max relative error {err:.2e}")
+    assert err < 0.01
+
+
+def energy_residual(integ, problem):
+    """Relative power balance over a run: (W_in - (W_diss + W_damp + W_elastic + W_pocket + dT)) / W_in."""
+    o_en = problem.bearing.Z * NS + NRING + NCAGE
+    E0, E1 = integ.y[0], integ.y[-1]
+    dT = kinetic_energy(E1, problem) - kinetic_energy(E0, problem)
+    W = E1[o_en:] - E0[o_en:]
+    out = W[E_DISS] + W[E_DAMP] + W[E_ELASTIC] + W[E_POCKET] + dT
+    return (W[E_IN] - out) / W[E_IN], W, dT
+
+
+def test_power_balance_over_a_run():
+    """From rolling kinematics (the rollers and the cage must find their traction balance: a
+    transient with kinetic-energy change), the drive and load work must equal the friction
+    dissipation (the kernels' loss powers), damping, elastic and pocket energy and the change of
+    kinetic energy within 0.5 % (issue 18). The kernels' slip leaves out the rollers' own
+    translation and tilt rates; the balance bounds what that leaves out."""
+    model, friction, op, plain, dc = dynamic_case(TRB + ["solver.dynamic.start=rolling"])
+    settings = dc.settings._replace(window=dc.settings.window * 0.2, samples=20, max_windows=1)
+    integ = dm.run(dc._replace(settings=settings))
+    rel, W, dT = energy_residual(integ, dc.problem)
+    print(f"power balance: W_in {W[E_IN]:.4g} N mm, dT {dT:.4g}, diss {W[E_DISS]:.4g}, damp {W[E_DAMP]:.3g}, "
+          f"elastic {W[E_ELASTIC]:.3g}, pocket {W[E_POCKET]:.3g}; relative residual {rel:.2e}")
+    assert abs(dT) > 1e-3 * abs(W[E_IN]), "no transient: the balance would not test the kinetic energy"
+    assert abs(rel) < 0.005
+
+
+@pytest.mark.parametrize("overrides", [
+    TRB,
+    ["bearing=tsrb_reference", "load.Fa=4500", "load.Fr=0", "load.speed=2000"],
+], ids=["trb_32208", "tsrb_reference"])
+def test_steady_state_matches_the_quasi_static_solver(overrides):
+    """From rolling kinematics to the steady state the detector finds: roller loads within 1 %,
+    torque within 3 %, cage speed within 0.5 % of the quasi-static solver (issue 18). The models
+    differ by the pocket's skew constraint, whose couple the cage takes (not in the
+    quasi-static cage balance), the exact gyroscopic and centrifugal loads, and the film
+    refreshed per window."""
+    model, friction, op, plain, dc = dynamic_case(overrides + ["solver.dynamic.start=rolling"])
+    integ = dm.run(dc)
+    summary, _ = dm.outputs(model, op, dc, integ, 0.0, plain["output"])
+    qs = dc.quasi_static
+    assert integ.steady, f"no steady state in {integ.windows} windows: changes {integ.change}"
+    err_Q = np.abs(summary["Q"] / qs["Q"] - 1.0).max()
+    err_T = abs(summary["torque"] / qs["torque"] - 1.0)
+    err_c = abs(summary["cage_speed"] / qs["cage_speed"] - 1.0)
+    print(f"{overrides[0]}: loads {err_Q:.2e}, torque {err_T:.2e} ({summary['torque']:.2f} vs {qs['torque']:.2f} "
+          f"N mm), cage speed {err_c:.2e} ({summary['cage_speed']:.3f} vs {qs['cage_speed']:.3f} rpm), "
+          f"{integ.windows} windows")
+    assert err_Q < 0.01
+    assert err_T < 0.03
+    assert err_c < 0.005
+
+
+@pytest.fixture(scope="module")
+def skew_run():
+    """TRB 32208 with free skew (friction.skew.enabled) from rolling kinematics and no skew, to
+    the steady state the detector finds (skews included)."""
+    model, friction, op, plain, dc = dynamic_case(TRB + ["friction.skew.enabled=true", "solver.dynamic.start=rolling"])
+    integ = dm.run(dc)
+    summary, _ = dm.outputs(model, op, dc, integ, 0.0, plain["output"])
+    return integ, summary, dc.quasi_static
+
+
+def test_free_skew_steady_state_matches_the_quasi_static_solver(skew_run):
+    """Skew free: loads, torque and cage speed within the targets of the unskewed rung (1 %, 3 %,
+    0.5 %) of the quasi-static solution with skew."""
+    integ, summary, qs = skew_run
+    assert integ.steady, f"no steady state in {integ.windows} windows: changes {integ.change}"
+    err_Q = np.abs(summary["Q"] / qs["Q"] - 1.0).max()
+    err_T = abs(summary["torque"] / qs["torque"] - 1.0)
+    err_c = abs(summary["cage_speed"] / qs["cage_speed"] - 1.0)
+    print(f"skew free: loads {err_Q:.2e}, torque {err_T:.2e}, cage speed {err_c:.2e}")
+    assert err_Q < 0.01
+    assert err_T < 0.03
+    assert err_c < 0.005
+
+
+@pytest.mark.xfail(strict=True, reason="measured 6.5 % (0.00257 against 0.00242 deg, TRB 32208 4.5 kN 2000 rpm, "
+                                       "from zero skew; 0.5 % when started at the quasi-static skew): the skew "
+                                       "inside the pocket clearance sits where the friction moment about v' "
+                                       "vanishes and that moment is flat in the skew, so the moments the "
+                                       "dynamic balance adds (gyroscopic) move it; not resolved (README)")
+def test_free_skew_settles_to_the_quasi_static_skew(skew_run):
+    """The TRB rollers hold their skew inside the pocket clearance, where the friction moment about
+    v' vanishes (the rib load restores, sim.physics.friction "Roller skew"). Target: the
+    quasi-static skew within 1 %, the load target of the ladder."""
+    integ, summary, qs = skew_run
+    err_skew = np.abs(summary["roller_skew"] / qs["roller_skew"] - 1.0).max()
+    print(f"skew free: skew {summary['roller_skew'][0]:.5f} vs {qs['roller_skew'][0]:.5f} deg ({err_skew:.2e})")
+    assert err_skew < 0.01
