@@ -271,7 +271,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     crowned TSRBs; one bracketed solve instead of one per roller, the Newton iteration does the
     rest); with skew, that roller's skew at its speed (bracketed), the start of every roller's.
     """
-    active, weight, tol_M, tol_T = settings.active, settings.weight, settings.tol_M, settings.tol_T
+    active, weight, tol_M = settings.active, settings.weight, settings.tol_M
     dMdw, dTdw, dMdc, dTdc, dMdp, dSdw, dSdp, dSdc, dTdp, known = jac
     par = case.par
     skew = par.skew
