@@ -23,6 +23,7 @@ convergence figure (median and quartiles of the gap against simulations).
     python benchmarks/bench_design_search.py                       # pinion, 10 seeds, all methods
     python benchmarks/bench_design_search.py study=size_32208 --seeds 10 --budget 300
     python benchmarks/bench_design_search.py --methods surrogate cobyla --seeds 3
+    python benchmarks/bench_design_search.py --stored-only     # the table and figure of what is stored
 
 Every finished (method, seed) run is written at once to
 ``outputs/benchmarks/design_search/<study>/<method>_seed<k>.nc`` (atomically); a rerun loads
@@ -255,6 +256,8 @@ def main(argv=None):
     parser.add_argument("--budget", type=int, default=300,
                         help="full simulations per run of the direct methods and COBYLA (default 300); the "
                              "surrogate loop keeps the study's budget and local stage")
+    parser.add_argument("--stored-only", action="store_true",
+                        help="summarise the runs already stored (as many seeds as each method has), run nothing")
     parser.add_argument("--reference", type=Path, help="reference optimum YAML (default "
                                                        "benchmarks/reference_optima/<study name>.yaml)")
     args = parser.parse_args(argv)
@@ -286,6 +289,8 @@ def main(argv=None):
             file = out / f"{method}_seed{seed}.nc"
             if file.is_file():
                 ds = xr.load_dataset(file)
+            elif args.stored_only:
+                continue
             else:
                 t0 = time.perf_counter()
                 ds = run_one(method, seed, args.overrides, args.budget, n0, reference)
@@ -294,6 +299,7 @@ def main(argv=None):
                 print(f"{method} seed {seed}: {ds.sizes['simulation']} simulations in {time.perf_counter() - t0:.0f} s; "
                       f"within 1 % after {hit[0] or 'never'}", flush=True)
             runs[method].append(ds)
+    runs = {m: r for m, r in runs.items() if r}
     print(summary(runs, reference, out))
     print(f"written to {out}/")
     return 0
