@@ -146,6 +146,17 @@ def test_pareto_refuses_in_one_line_and_makes_no_folder(tmp_path, overrides, fra
     assert not (tmp_path / "outputs").exists()
 
 
+# ---------------------------------------------------------------------------- python -m studies.reference_optimum
+@pytest.mark.parametrize("args, fragments", [
+    (["--sobol", "1"], ["--sobol = 1", ">= 2"]),
+    (["study.load.Fa=-5"], ["study.load.Fa = -5.0 is outside the allowed range"]),
+], ids=["sample_too_small", "Fa_negative"])
+def test_reference_optimum_refuses_in_one_line_and_makes_no_folder(tmp_path, args, fragments):
+    out = run(["-m", "studies.reference_optimum", *args], tmp_path)
+    assert_refused(out, *fragments)
+    assert not (tmp_path / "outputs").exists()
+
+
 # ---------------------------------------------------------------------------- python -m studies.validation
 def test_validation_refuses_an_output_path_that_is_a_file(tmp_path):
     target = tmp_path / "report"
@@ -172,4 +183,5 @@ def test_every_entry_point_is_covered():
     mains = {p.relative_to(REPO).as_posix() for p in list((REPO / "sim").rglob("*.py"))
              + list((REPO / "studies").rglob("*.py")) if 'if __name__ == "__main__":' in p.read_text()}
     assert mains == {"sim/run.py", "sim/api/sweep.py", "studies/optimize.py", "studies/pareto.py",
-                     "studies/sensitivity.py", "studies/validation.py", "studies/workers.py"}
+                     "studies/reference_optimum.py", "studies/sensitivity.py", "studies/validation.py",
+                     "studies/workers.py"}
