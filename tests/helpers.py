@@ -1,5 +1,6 @@
-"""Test helpers: load cases and independent recomputation of forces from a solved state."""
+"""Test helpers: load cases, independent recomputation of forces from a solved state, killed searches."""
 import numpy as np
+import pytest
 
 from sim.api import OperatingPoint
 
@@ -67,3 +68,20 @@ def roller_residuals(model, raw, op, ext=None, reported=False):
         r = f[:3] + np.array([body.centrifugal * ur, body.centrifugal * vr, body.gyroscopic]) + ext[j]
         out.append(max(abs(r[0]), abs(r[1]), abs(r[2]) / g.Lwe) / (Q[0] + Q[1] + Q[2]))
     return np.array(out)
+
+
+def killed_search_run(search, on_batch=2):
+    """Run a design search (studies.loop.DesignSearch) that is killed (KeyboardInterrupt) when it
+    starts its ``on_batch``-th batch of full simulations; returns the sizes of the batches asked for."""
+    calls, original = [], search.simulate
+
+    def dies(X, source, round_index):
+        calls.append(len(X))
+        if len(calls) == on_batch:
+            raise KeyboardInterrupt("killed")
+        return original(X, source, round_index)
+
+    search.simulate = dies
+    with pytest.raises(KeyboardInterrupt):
+        search.run()
+    return calls

@@ -19,6 +19,7 @@ from studies.evaluate import STATUS, table_from_file
 from studies.loop import DesignSearch
 from studies.report import ratio_in_words, write_report
 from studies.search import make_sampler, open_study, run_trials, trial_margins
+from tests.helpers import killed_search_run
 
 TINY = ["study.objective=pmax", "friction.enabled=false", "solver.n_slices=10", "study.initial_design.n=8",
         "study.budget.max_simulations=12", "study.budget.verify_per_round=2",
@@ -163,18 +164,7 @@ def test_initial_design_resumes_point_by_point(finished, tmp_path):
     initial points, bit for bit."""
     _, reference, _ = finished
     search = search_in(tmp_path)
-    calls = []
-    original = search.simulate
-
-    def dies_on_second_chunk(X, source, round_index):
-        calls.append(len(X))
-        if len(calls) == 2:
-            raise KeyboardInterrupt("killed")
-        return original(X, source, round_index)
-
-    search.simulate = dies_on_second_chunk
-    with pytest.raises(KeyboardInterrupt):
-        search.run()
+    calls = killed_search_run(search)
     stored = table_from_file(xr.load_dataset(tmp_path / "training.nc"))
     assert calls == [4, 4] and stored.sizes["design"] == 4
     resumed = search_in(tmp_path)

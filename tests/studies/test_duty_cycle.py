@@ -22,6 +22,7 @@ from studies.cycle import LIFE_EXPONENT, DutyCycle, cycle_life, equivalent_load,
 from studies.evaluate import STATUS, points_dataset, table_from_file
 from studies.loop import DesignSearch
 from studies.report import write_report
+from tests.helpers import killed_search_run
 
 FAST = ["solver.n_slices=10", "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0"]
 CHECKER = Path(__file__).resolve().parents[2].parent / "shared" / "tools" / "check_result.py"
@@ -221,17 +222,7 @@ def test_duty_search_resumes_its_per_case_evaluations(duty_finished, tmp_path):
     run's points, bit for bit."""
     _, reference, _ = duty_finished
     search = search_in(tmp_path, *TINY_DUTY)
-    original, calls = search.simulate, []
-
-    def dies_on_second_chunk(X, source, round_index):
-        calls.append(len(X))
-        if len(calls) == 2:
-            raise KeyboardInterrupt("killed")
-        return original(X, source, round_index)
-
-    search.simulate = dies_on_second_chunk
-    with pytest.raises(KeyboardInterrupt):
-        search.run()
+    calls = killed_search_run(search)
     stored = table_from_file(xr.load_dataset(tmp_path / "training.nc"))
     assert calls == [4, 4] and (stored.sizes["design"], stored.sizes["case"]) == (4, 3)
     assert np.all(np.isfinite(stored.power_loss.values[stored.status.values == STATUS["ok"]]))
