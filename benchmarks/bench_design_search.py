@@ -56,14 +56,12 @@ from studies.config import compose  # noqa: E402
 from studies.constraints import rank_key  # noqa: E402
 from studies.evaluate import STATUS, design_matrix  # noqa: E402
 from studies.loop import DesignSearch, round_seed  # noqa: E402
+from studies.reference_optimum import DISTINCT_STARTS, distinct_starts  # noqa: E402
 from studies.refine import local_refine  # noqa: E402
 from studies.search import make_sampler, open_study, run_trials  # noqa: E402
 
 METHODS = ("surrogate", "tpe", "gp", "random", "cobyla")
 TARGETS = (1e-2, 1e-3)     # relative gaps to the reference optimum: 1 % and 0.1 % (issue 16 item 4)
-# COBYLA restarts: a start closer than this (max norm, unit cube) to an earlier one is skipped, as in
-# studies.reference_optimum (2 % of each range: closer starts retrace one path)
-DISTINCT_STARTS = 0.02
 
 
 class Trace:
@@ -141,11 +139,7 @@ def cobyla_run(search, seed, budget, trace):
         return seen[x.tobytes()]
 
     order = sorted(range(len(X0)), key=lambda i: rank_key(*seen[X0[i].tobytes()]))
-    starts = []
-    for i in order:
-        u = space.unit(X0[i])[0]
-        if all(np.max(np.abs(u - v)) >= DISTINCT_STARTS for v in starts):
-            starts.append(u)
+    starts = distinct_starts(space.unit(X0[order]), len(order), DISTINCT_STARTS)
     r = s.refine
     for u0 in starts:
         try:

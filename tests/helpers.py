@@ -85,3 +85,18 @@ def killed_search_run(search, on_batch=2):
     with pytest.raises(KeyboardInterrupt):
         search.run()
     return calls
+
+
+def assert_study_refused(study, key, value, words):
+    """Setting ``key`` of a study config node to ``value`` makes studies.config.validate raise a
+    StudyConfigError whose message holds every one of ``words`` (key, value, allowed range)."""
+    from omegaconf import OmegaConf
+
+    from studies.config import StudyConfigError, validate
+
+    study = study.copy()
+    OmegaConf.update(study, key, value, merge=False)
+    with pytest.raises(StudyConfigError) as err:
+        validate(study)
+    for w in words:
+        assert w in str(err.value)

@@ -8,6 +8,7 @@ from omegaconf import OmegaConf
 
 from studies.config import StudyConfigError, compose, simulation_config, validate
 from studies.optimize import main
+from tests.helpers import assert_study_refused
 
 
 @pytest.fixture(scope="module")
@@ -57,12 +58,7 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("surrogate.calibrate", "yes", ["study.surrogate.calibrate", "'yes'", "true or false"]),
 ])
 def test_bad_values_fail_at_start_naming_key_value_and_range(pinion, key, value, words):
-    study = pinion.copy()
-    OmegaConf.update(study, key, value, merge=False)
-    with pytest.raises(StudyConfigError) as err:
-        validate(study)
-    for w in words:
-        assert w in str(err.value)
+    assert_study_refused(pinion, key, value, words)
 
 
 def test_study_owned_groups_are_refused():
