@@ -19,6 +19,7 @@ import numpy as np
 import xarray as xr
 from xarray.indexes import PandasIndex
 
+from sim._math.jit import source_fingerprint
 from sim.physics import ratings
 from sim.physics.friction import COMPONENTS
 
@@ -142,6 +143,7 @@ def provenance_attrs(title, config_yaml, settings):
         "title": title,
         "package_version": package_version(),
         "git_commit": git_commit(),
+        "model_fingerprint": source_fingerprint(),
         "config": config_yaml,
         "solver": "quasi_static",
         "solver_settings": str(settings),
@@ -380,7 +382,8 @@ def failed_dataset(bearing, ops, config_yaml, message):
                             {"units": "1", "long_name": CASE_VARIABLES["converged"][2]})
     ds = xr.Dataset({"converged": converged}, coords=coords)
     ds.attrs.update({"Conventions": "CF-1.10", "title": "failed design", "package_version": package_version(),
-                     "git_commit": git_commit(), "config": config_yaml, "error": message,
+                     "git_commit": git_commit(), "model_fingerprint": source_fingerprint(), "config": config_yaml,
+                     "error": message,
                      "created": utc_now()})
     return ds
 
