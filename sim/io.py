@@ -86,6 +86,12 @@ def git_commit():
         return "unknown"
 
 
+def model_fingerprint():
+    """SHA-256 of the sources of ``sim/`` (:func:`sim._math.jit.source_fingerprint`): two results
+    with the same one were computed by the same simulation code (attribute ``model_fingerprint``)."""
+    return source_fingerprint()
+
+
 @functools.lru_cache(maxsize=1)
 def package_version():
     """Installed version of tsrb-workbench, or the source version when not installed (looked up
@@ -143,7 +149,7 @@ def provenance_attrs(title, config_yaml, settings):
         "title": title,
         "package_version": package_version(),
         "git_commit": git_commit(),
-        "model_fingerprint": source_fingerprint(),
+        "model_fingerprint": model_fingerprint(),
         "config": config_yaml,
         "solver": "quasi_static",
         "solver_settings": str(settings),
@@ -382,7 +388,7 @@ def failed_dataset(bearing, ops, config_yaml, message):
                             {"units": "1", "long_name": CASE_VARIABLES["converged"][2]})
     ds = xr.Dataset({"converged": converged}, coords=coords)
     ds.attrs.update({"Conventions": "CF-1.10", "title": "failed design", "package_version": package_version(),
-                     "git_commit": git_commit(), "model_fingerprint": source_fingerprint(), "config": config_yaml,
+                     "git_commit": git_commit(), "model_fingerprint": model_fingerprint(), "config": config_yaml,
                      "error": message,
                      "created": utc_now()})
     return ds
