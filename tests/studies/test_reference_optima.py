@@ -24,8 +24,8 @@ STORED = sorted((Path(__file__).resolve().parents[2] / "benchmarks" / "reference
 REPRODUCE_RTOL = 1e-6
 # Coordinate step of the local-optimality probe, unit scale (0.2 % of each search range): 20x
 # COBYLA's final trust radius (refine.final_step 1e-4), so the probe looks past where the local run
-# stopped, yet inside the neighbourhood where the objective is smooth (slice quantisation of the
-# contact length moves it in steps of ~0.05 % at this distance on the pinion study).
+# stopped, yet close enough that the objective is locally smooth there (the torque is continuous
+# in the design since the contact ends lie between slice centres; pmax, a maximum over slices, has kinks).
 PROBE_STEP = 2e-3
 # An optimum is reported as within 0.1 % of the best (issue 16 item 4's tightest target): a
 # feasible probe better than that would make the stored value no reference at that precision.
