@@ -466,7 +466,7 @@ class DesignSearch:
 
         u0 = self.space.unit(design_matrix(ds, self.space)[i])[0]
         self.local = local_refine(evaluate, u0, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
-                                  float(r.active_tolerance))
+                                  float(r.active_tolerance), int(r.restarts), float(r.restart_shrink))
         # the first margin is the simulation's own (0 whenever it gave a result): no constraint to report
         self.local.active_constraints = [c for c in self.local.active_constraints if c != self.limits.names[0]]
         return xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")

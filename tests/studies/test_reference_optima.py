@@ -14,7 +14,7 @@ from studies.config import compose
 from studies.constraints import rank_key, violation
 from studies.evaluate import STATUS, table_from_file
 from studies.loop import DesignSearch
-from studies.reference_optimum import POLISH_ROUNDS, main
+from studies.reference_optimum import main
 
 STORED = sorted((Path(__file__).resolve().parents[2] / "benchmarks" / "reference_optima").glob("*.yaml"))
 # The simulation is deterministic; re-run on another machine its loads agree to the solver
@@ -88,7 +88,8 @@ def test_reference_run_takes_the_best_point_and_resumes_without_simulating(tmp_p
     main(args)
     points = tmp_path / "outputs" / "studies" / "reference_test" / "reference" / "points.nc"
     n_first = xr.load_dataset(points).sizes["design"]
-    assert 8 < n_first <= 8 + (1 + 1 + POLISH_ROUNDS) * 8     # sample, two starts and the polish rounds
+    polish = int(compose(args[:2]).study.refine.restarts)
+    assert 8 < n_first <= 8 + (1 + 1 + polish) * 8            # sample, two starts and the polish runs
     first = OmegaConf.to_container(OmegaConf.load("first.yaml"))
     mtime = points.stat().st_mtime_ns
     main(args[:-1] + ["second.yaml"])
