@@ -69,8 +69,8 @@ from scipy.integrate import solve_ivp
 from threadpoolctl import threadpool_limits
 
 from sim._math.jit import kernel
-from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_TOUT, EV_TZ, NC, NEV,
-                                  pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
+from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_TOUT, EV_TZ, NC,
+                                  NEV, pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
@@ -90,11 +90,13 @@ RO_QO, RO_QI, RO_QRIB, RO_FP, RO_WR = range(5)
 NRO = 5
 # Bearing outputs of :func:`rhs` (``tot``): torque on the outer ring [N mm], drive torque of the
 # inner ring [N mm], then the loss powers of sim.physics.friction.COMPONENTS [N mm/s], then the
-# damping power (contacts and pocket) [N mm/s].
+# damping power (contacts and pocket) [N mm/s], then the power of the lateral tractions on the
+# lateral slip of the skewed rollers (EV_PSKEW, a part of the sliding power) [N mm/s].
 TO_TOUT, TO_TIN = 0, 1
 TO_P0 = 2
 TO_DAMP = TO_P0 + NC
-NTO = TO_DAMP + 1
+TO_PSKEW = TO_DAMP + 1
+NTO = TO_PSKEW + 1
 
 # Bodies and parameters of one dynamic case (numba-supported named tuple):
 DynamicBody = namedtuple("DynamicBody", [
@@ -324,6 +326,7 @@ def rhs(y, problem, work, dy, rol, tot, ring_rows):
             for i in range(NC):
                 tot[TO_P0 + i] += ev[EV_P0 + i]
                 dy[o_en + E_DISS] += ev[EV_P0 + i]
+            tot[TO_PSKEW] += ev[EV_PSKEW]
             P_in += body.wi * (ev[EV_TZ] + ev[EV_TOUT])
         # translation (cylindrical coordinates: centrifugal and Coriolis terms)
         a_r = r * wphi * wphi + Fr_ / m

@@ -1,0 +1,84 @@
+"""A design simulated by each solver: the quasi-static solver without and with roller skew
+(``friction.skew``) and the time-domain solver with skew and tilt free (``solver=dynamic``),
+reduced to its torque, the torque's breakdown by mechanism and the roller skew and tilt
+(issue 18 items 6 and 7, and the ``verify.solver`` of the studies).
+
+The quantities are those the result Dataset carries (DATA.md, ``sim.io``): ``torque`` and
+``torque_component`` (the outer-ring torque split in proportion to each mechanism's power),
+``skew_sliding`` (the lateral-slip part of ``sliding``), ``power_loss``, ``roller_skew`` and
+``roller_tilt``; and of a dynamic run the drive torque of the inner ring over the last window
+(``drive_torque_t``). At a steady state torque x inner-ring speed = power loss = drive torque x
+inner-ring speed; the three are reported apart, so that a run can show where they differ.
+"""
+import time
+from pathlib import Path
+
+import numpy as np
+
+import sim
+from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic
+from studies.config import simulation_config
+from studies.evaluate import design_config
+
+#: allowed values of study.verify.solver: quasi_static (the search's own full simulation only) or
+#: dynamic (the reported best also by the time-domain solver, skew free)
+VERIFY_SOLVERS = ("quasi_static", "dynamic")
+#: solver variants: name -> (label, simulation overrides)
+VARIANTS = {
+    "quasi_static": ("quasi-static", []),
+    "quasi_static_skew": ("quasi-static, skew", ["friction.skew.enabled=true"]),
+    "dynamic": ("dynamic, skew and tilt free", ["friction.skew.enabled=true", "solver=dynamic"]),
+}
+W_TO_N_MM_PER_S = 1e3
+RAD_S_PER_RPM = np.pi / 30.0   # 1 rpm = 2 pi / 60 rad/s
+FIGURE_DPI = 150               # 1/inch, the docs figures' resolution (docs/figures/skew_tilt_dynamic.py)
+
+
+def variant_config(study, bearing, variant, overrides=(), values=None, case=None):
+    """Simulation config of ``bearing`` (conf/bearing name) at the study's load case ``case``
+    (default ``study.load``) with the overrides of solver ``variant`` (:data:`VARIANTS`), the
+    user's ``overrides`` and the design ``values`` (parameter name -> value) if given."""
+    cfg = simulation_config(study, bearing, [*VARIANTS[variant][1], *overrides], case)
+    return cfg if values is None else design_config(cfg, values)
+
+
+def solver_summary(cfg):
+    """Simulate one case (``cfg``) and reduce it: dict of floats in output units (torque,
+    loss_torque = power loss / inner-ring speed, drive_torque [N mm]; component [N mm] by
+    the Dataset's components, a dict; skew_sliding [N mm], NaN without skew; skew, tilt: the
+    largest |roller skew| and |roller tilt| [deg], skew NaN without skew; cage_speed [rpm];
+    converged; wall_time [s]) and the Dataset."""
+    t0 = time.perf_counter()
+    ds = sim.simulate(cfg)
+    wall = time.perf_counter() - t0
+    c = ds.isel(design=0, case=0)
+    wi = float(cfg.load.speed) * RAD_S_PER_RPM
+    torque = float(c.torque) if "torque" in c else np.nan
+    drive = torque
+    if "drive_torque_t" in c:   # dynamic: the mean over the last window, as the summary's torque
+        drive = float(c.drive_torque_t[-int(cfg.solver.dynamic.samples_per_window):].mean())
+    out = {
+        "torque": torque,
+        "loss_torque": float(c.power_loss) * W_TO_N_MM_PER_S / wi if "power_loss" in c else np.nan,
+        "drive_torque": drive,
+        "component": {str(k): float(c.torque_component.sel(component=k)) if "torque_component" in c else np.nan
+                      for k in c.component.values},
+        "skew_sliding": float(c.skew_sliding) if "skew_sliding" in c else np.nan,
+        "skew": float(np.abs(c.roller_skew).max()) if "roller_skew" in c else np.nan,
+        "tilt": float(np.abs(c.roller_tilt).max()),
+        "cage_speed": float(c.cage_speed) if "cage_speed" in c else np.nan,
+        "converged": bool(c.converged),
+        "wall_time": wall,
+    }
+    return out, ds
+
+
+def write_results(stem, ds, text, fig):
+    """Write ``ds`` to ``<stem>.nc``, the markdown ``text`` to ``<stem>.md`` and ``fig`` to
+    ``<stem>.png``, each atomically (a reader sees the old file or the new one); print the text."""
+    stem = Path(stem)
+    write_netcdf_atomic(ds, stem.with_suffix(".nc"))
+    write_bytes_atomic(stem.with_suffix(".md"), text.encode())
+    write_figure_atomic(fig, stem.with_suffix(".png"), FIGURE_DPI)
+    print(text)
+    print(f"wrote {stem}.nc, .md, .png")
