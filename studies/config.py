@@ -26,6 +26,15 @@ CASE_KEYS = (*LOAD_KEYS, "share")   # keys of a study.duty_cycle entry
 # |sum of the time shares - 1| allowed: shares are written with a few digits, and the float sum of m
 # of them errs by ~m 1e-16, so 1e-9 refuses every real mistake and accepts every exact cycle
 SHARE_SUM_TOLERANCE = 1e-9
+#: allowed values of study.verify.solver: quasi_static (the search's own full simulations only) or
+#: dynamic (the reported best also by the time-domain solver with skew and tilt free)
+VERIFY_SOLVERS = ("quasi_static", "dynamic")
+#: solver variants of a re-simulation (studies.verify): name -> (label, simulation overrides)
+VARIANTS = {
+    "quasi_static": ("quasi-static", []),
+    "quasi_static_skew": ("quasi-static, skew", ["friction.skew.enabled=true"]),
+    "dynamic": ("dynamic, skew and tilt free", ["friction.skew.enabled=true", "solver=dynamic"]),
+}
 DEFAULT_STUDY = "pinion"
 OUTPUT_ROOT = Path("outputs") / "studies"
 
@@ -123,11 +132,18 @@ def check_simulations(study, overrides=None):
     """
     from sim.api.sweep import preflight
 
+    dynamic = study.verify.solver == "dynamic"
     for k, case in enumerate(DutyCycle.from_config(study).cases):
         for role in dict.fromkeys(("bearing", "reference_trb", "thesis_design")):
             name = study[role]
             try:
                 preflight(simulation_config(study, name, overrides, case))
+                if dynamic and role == "bearing":   # the best design's dynamic re-simulation (studies.verify)
+                    cfg = simulation_config(study, name, [*VARIANTS["dynamic"][1], *(overrides or [])], case)
+                    _require(bool(cfg.friction.enabled), "verify.solver", study.verify.solver,
+                             "quasi_static when friction.enabled = false: the dynamic solver's rollers and cage are "
+                             "driven by the raceway traction")
+                    preflight(cfg)
             except (InputError, GeometryError) as err:
                 lines = [_named_load_line(study, k, line) if line.startswith("load.")
                          else f"{line} (in the simulation of study.{role} = {name!r})"
@@ -280,6 +296,9 @@ def validate(study):
     for key in LOAD_KEYS:
         _require(_is_number(load.get(key)), f"load.{key}", load.get(key), "a finite number (checked by the simulation)")
     _validate_duty_cycle(s.get("duty_cycle"))
+    verify = s.get("verify") or {}
+    _require(verify.get("solver") in VERIFY_SOLVERS, "verify.solver", verify.get("solver"),
+             f"one of {list(VERIFY_SOLVERS)} (dynamic: the reported best also by the time-domain solver)")
     for key, group in (("bearing", "bearing"), ("reference_trb", "bearing"), ("thesis_design", "bearing"),
                        ("lubricant", "lubricant")):
         v = s.get(key)

@@ -271,10 +271,16 @@ def rhs(y, problem, work, dy, rol, tot, ring_rows):
         Fr_ = (f[0] + fd[0]) * ur + (f[1] + fd[1]) * vr
         Fz_ = (f[0] + fd[0]) * uz + (f[1] + fd[1]) * vz
         Ft_ = 0.0
-        # moment about the centre, components (e_r, e_t, e_z); the contact moment acts about u' x v' = -e_t
-        M[0] = 0.0
-        M[1] = -(f[2] + fd[2])
-        M[2] = 0.0
+        # moment about the centre, components (e_r, e_t, e_z): the contact moment f_theta conjugate
+        # to the tilt, whose rate is theta' = Omega . w'' / cos(psi), is f_theta w'' / cos(psi)
+        # (w'' = u'' x v', -e_t without skew; its power f_theta theta' is the elastic energy's).
+        # With skew the normals pass through the skewed axis u'' (sim.physics.friction, "Roller
+        # skew"), so their moment has no component along u''; the kernel adds the first-order part
+        # about v' (EV_MS) and the tangential force (EV_FT). About -e_t instead, the skew gave a
+        # spurious spin couple f_theta sin(psi) and z-moment, and the outer-ring and drive torques
+        # missed power loss / speed by 8 % at 0.36 deg skew (pinion TSRB, issue 18 item 6)
+        for i in range(3):
+            M[i] = (f[2] + fd[2]) * A[2, i] / np.cos(psi)
         # cage pocket: circumferential penalty and damper at the pitch radius
         g = body.r_pocket * (phi - y[o_cage] - 2.0 * np.pi * j / Z)
         gdot = body.r_pocket * (wphi - wc)
