@@ -94,10 +94,10 @@ def figure(ds):
     """Torque [N mm] and skew [deg] against the clearance [mm]; the figure."""
     fig, (ax_t, ax_s) = plt.subplots(1, 2, figsize=(9.0, 3.8))
     for i, b in enumerate(ds.bearing.values):
-        for v, style in zip(ds.solver.values, ("--", "-")):
+        for v, style, marker in zip(ds.solver.values, ("--", "-"), ("s", "o")):
             r = ds.sel(bearing=b, solver=v)
-            ax_t.plot(ds.pocket_clearance, r.torque, style, marker="o", color=f"C{i}", label=f"{b}, {v}")
-            ax_s.plot(ds.pocket_clearance, r.skew, style, marker="o", color=f"C{i}", label=f"{b}, {v}")
+            for ax, q in ((ax_t, r.torque), (ax_s, r.skew)):
+                ax.plot(ds.pocket_clearance, q, style, marker=marker, mfc="none", color=f"C{i}", label=f"{b}, {v}")
     ax_t.set_ylabel("torque [N mm]")
     ax_s.set_ylabel("largest roller skew [deg]")
     for ax in (ax_t, ax_s):
