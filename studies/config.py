@@ -81,6 +81,14 @@ def simulation_overrides(overrides):
     return out
 
 
+def for_solver(overrides):
+    """``overrides`` without ``solver.dynamic.*`` keys unless they select ``solver=dynamic``: those
+    keys set the dynamic re-simulation of ``study.verify`` only (other configs have no such node)."""
+    if VARIANTS["dynamic"][1][-1] in overrides:
+        return list(overrides)
+    return [o for o in overrides if not o.lstrip("+~").startswith("solver.dynamic.")]
+
+
 def _composed(overrides):
     """``sim.load_config(overrides)``; a composition error (unknown key, bad override syntax, missing
     config) is a StudyConfigError with Hydra's message on one line."""
@@ -96,7 +104,7 @@ def compose(overrides=None):
     the simulations of the study's bearings at its load case included (:func:`check_simulations`),
     before anything is written."""
     simulation_overrides(overrides)
-    cfg = _composed(study_overrides(overrides))
+    cfg = _composed(for_solver(study_overrides(overrides)))
     validate(cfg.study)
     check_simulations(cfg.study, overrides)
     return cfg
@@ -104,8 +112,10 @@ def compose(overrides=None):
 
 def simulation_config(study, bearing, overrides=None, case=None):
     """Composed simulation config of ``bearing`` (a conf/bearing name) at the load case ``case``
-    (a dict of LOAD_KEYS, a case of studies.cycle.DutyCycle; default: ``study.load``)."""
-    cfg = _composed([f"bearing={bearing}", f"lubricant={study.lubricant}", *simulation_overrides(overrides)])
+    (a dict of LOAD_KEYS, a case of studies.cycle.DutyCycle; default: ``study.load``).
+    ``solver.dynamic.*`` overrides are passed on only with ``solver=dynamic``."""
+    passed = for_solver(simulation_overrides(overrides))
+    cfg = _composed([f"bearing={bearing}", f"lubricant={study.lubricant}", *passed])
     for key in LOAD_KEYS:
         cfg.load[key] = float((study.load if case is None else case)[key])
     return cfg

@@ -38,20 +38,16 @@ def solver_summary(cfg):
     loss_torque = power loss / inner-ring speed, drive_torque [N mm]; component [N mm] by
     the Dataset's components, a dict; skew_sliding [N mm], NaN without skew; skew, tilt: the
     largest |roller skew| and |roller tilt| [deg], skew NaN without skew; cage_speed [rpm];
-    converged; wall_time [s]) and the Dataset."""
+    converged; wall_time [s]) and the Dataset. Of a dynamic run torque, loss_torque, drive_torque,
+    skew and tilt are those of its last window (:func:`last_window`), with or without steady state."""
     t0 = time.perf_counter()
     ds = sim.simulate(cfg)
     wall = time.perf_counter() - t0
     c = ds.isel(design=0, case=0)
     wi = float(cfg.load.speed) * RAD_S_PER_RPM
-    torque = float(c.torque) if "torque" in c else np.nan
-    drive = torque
-    if "drive_torque_t" in c:   # dynamic: the mean over the last window, as the summary's torque
-        drive = float(c.drive_torque_t[-int(cfg.solver.dynamic.samples_per_window):].mean())
     out = {
-        "torque": torque,
+        "torque": float(c.torque) if "torque" in c else np.nan,
         "loss_torque": float(c.power_loss) * W_TO_N_MM_PER_S / wi if "power_loss" in c else np.nan,
-        "drive_torque": drive,
         "component": {str(k): float(c.torque_component.sel(component=k)) if "torque_component" in c else np.nan
                       for k in c.component.values},
         "skew_sliding": float(c.skew_sliding) if "skew_sliding" in c else np.nan,
@@ -61,7 +57,25 @@ def solver_summary(cfg):
         "converged": bool(c.converged),
         "wall_time": wall,
     }
+    out["drive_torque"] = out["torque"]
+    if "time" in c.dims:
+        out.update(last_window(c, int(cfg.solver.dynamic.samples_per_window), wi))
     return out, ds
+
+
+def last_window(c, samples, wi):
+    """Of a dynamic run's time series ``c`` (one case), over its last window of ``samples``
+    samples: the means of the outer-ring torque, of power loss / inner-ring speed ``wi`` [rad/s] and
+    of the drive torque [N mm], and the largest |mean skew| and |mean tilt| of a roller [deg]. At a
+    steady state these are the summary's own (sim.api.dynamic_model.outputs takes the same
+    window); without one, where the summary has no friction outputs, they still say where the run
+    ended."""
+    last = c.isel(time=slice(-samples, None))
+    return {"torque": float(last.torque_t.mean()),
+            "loss_torque": float(last.power_loss_t.mean()) * W_TO_N_MM_PER_S / wi,
+            "drive_torque": float(last.drive_torque_t.mean()),
+            "skew": float(np.abs(last.roller_skew_t.mean("time")).max()),
+            "tilt": float(np.abs(last.roller_tilt_t.mean("time")).max())}
 
 
 def write_results(stem, ds, text, fig):
@@ -88,6 +102,7 @@ def dynamic_verification(search, values, quasi_static):
              "steady state all three agree); largest |roller skew| and |roller tilt| [deg]; wall time [s].", "",
              "| case | quasi-static torque | with skew: torque | skew | dynamic: torque | power loss / speed | "
              "drive torque | skew | tilt | steady state | wall |", "|" + " --- |" * 11]
+    unsteady = []
     for k, case in enumerate(search.cycle.cases):
         skew, _ = solver_summary(variant_config(s, s.bearing, "quasi_static_skew", search.overrides, values, case))
         dyn, ds = solver_summary(variant_config(s, s.bearing, "dynamic", search.overrides, values, case))
@@ -97,6 +112,11 @@ def dynamic_verification(search, values, quasi_static):
         lines.append(f"| {k} | {qs_torque:.1f} | {skew['torque']:.1f} | {skew['skew']:.4f} | {dyn['torque']:.1f} | "
                      f"{dyn['loss_torque']:.1f} | {dyn['drive_torque']:.1f} | {dyn['skew']:.4f} | {dyn['tilt']:.4f} | "
                      f"{dyn['converged']} | {dyn['wall_time']:.0f} |")
+        if not dyn["converged"]:
+            unsteady.append(k)
         search.log(f"verified best, case {k}, dynamic: torque {dyn['torque']:.1f} N mm (quasi-static {qs_torque:.1f}), "
                    f"skew {dyn['skew']:.4f} deg, {dyn['wall_time']:.0f} s")
+    if unsteady:
+        lines += ["", f"No steady state at case(s) {unsteady} within solver.dynamic.max_windows: the dynamic values "
+                      "there are means over the last window (its time series in best_design_dynamic*.nc)."]
     return "\n".join(lines)
