@@ -78,13 +78,15 @@ def last_window(c, samples, wi):
             "tilt": float(np.abs(last.roller_tilt_t.mean("time")).max())}
 
 
-def write_results(stem, ds, text, fig):
-    """Write ``ds`` to ``<stem>.nc``, the markdown ``text`` to ``<stem>.md`` and ``fig`` to
-    ``<stem>.png``, each atomically (a reader sees the old file or the new one); print the text."""
+def write_results(stem, ds, table, figure):
+    """Write ``ds`` to ``<stem>.nc``, its markdown ``table(ds)`` to ``<stem>.md`` and its matplotlib
+    ``figure(ds)`` to ``<stem>.png``, each atomically (a reader sees the old file or the new one);
+    print the table (the docs/figures scripts of issue 18)."""
     stem = Path(stem)
+    text = table(ds)
     write_netcdf_atomic(ds, stem.with_suffix(".nc"))
     write_bytes_atomic(stem.with_suffix(".md"), text.encode())
-    write_figure_atomic(fig, stem.with_suffix(".png"), FIGURE_DPI)
+    write_figure_atomic(figure(ds), stem.with_suffix(".png"), FIGURE_DPI)
     print(text)
     print(f"wrote {stem}.nc, .md, .png")
 

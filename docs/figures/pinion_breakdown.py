@@ -124,10 +124,5 @@ def figure(ds):
     return fig
 
 
-def main(argv=None):
-    ds = run(sys.argv[1:] if argv is None else argv)
-    write_results(OUT, ds, table(ds), figure(ds))
-
-
 if __name__ == "__main__":
-    main()
+    write_results(OUT, run(sys.argv[1:]), table, figure)
