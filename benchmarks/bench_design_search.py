@@ -51,7 +51,7 @@ import xarray as xr  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from omegaconf import OmegaConf  # noqa: E402
 
-from sim.io import write_netcdf_atomic  # noqa: E402
+from sim.io import model_fingerprint, write_netcdf_atomic  # noqa: E402
 from studies.config import compose  # noqa: E402
 from studies.constraints import rank_key  # noqa: E402
 from studies.evaluate import STATUS, design_matrix  # noqa: E402
@@ -188,7 +188,8 @@ def run_one(method, seed, overrides, budget, n0, reference):
          "design": (("simulation", "parameter"), np.array(trace.x).reshape(len(trace.x), len(names)),
                     {"long_name": "free design parameters of the simulated design (study units)"})},
         coords={"simulation": np.arange(1, len(trace.y) + 1), "parameter": list(names)},
-        attrs={"method": method, "seed": seed, "budget": budget, "initial_design": n0})
+        attrs={"method": method, "seed": seed, "budget": budget, "initial_design": n0,
+               "model_fingerprint": model_fingerprint()})
 
 
 def summary(runs, reference, out):
@@ -281,11 +282,14 @@ def main(argv=None):
         runs[method] = []
         for seed in range(args.seeds):
             file = out / f"{method}_seed{seed}.nc"
-            if file.is_file():
-                ds = xr.load_dataset(file)
-            elif args.stored_only:
+            ds = xr.load_dataset(file) if file.is_file() else None
+            if ds is not None and ds.attrs.get("model_fingerprint") != model_fingerprint():
+                print(f"{file}: computed by another version of the simulation code (sim/ sources): "
+                      f"{'left out' if args.stored_only else 'run again'}", flush=True)
+                ds = None
+            if ds is None and args.stored_only:
                 continue
-            else:
+            if ds is None:
                 t0 = time.perf_counter()
                 ds = run_one(method, seed, args.overrides, args.budget, n0, reference)
                 write_netcdf_atomic(ds, file)
@@ -294,6 +298,9 @@ def main(argv=None):
                       f"within 1 % after {hit[0] or 'never'}", flush=True)
             runs[method].append(ds)
     runs = {m: r for m, r in runs.items() if r}
+    if not runs:
+        print(f"no stored runs of this simulation code in {out}/")
+        return 0
     print(summary(runs, reference, out))
     print(f"written to {out}/")
     return 0

@@ -20,6 +20,7 @@ import numpy as np
 import xarray as xr
 from xarray.indexes import PandasIndex
 
+from sim._math.jit import source_fingerprint
 from sim.physics import ratings
 from sim.physics.friction import COMPONENTS
 
@@ -86,6 +87,12 @@ def git_commit():
         return "unknown"
 
 
+def model_fingerprint():
+    """SHA-256 of the sources of ``sim/`` (:func:`sim._math.jit.source_fingerprint`): two results
+    with the same one were computed by the same simulation code (attribute ``model_fingerprint``)."""
+    return source_fingerprint()
+
+
 @functools.lru_cache(maxsize=1)
 def package_version():
     """Installed version of tsrb-workbench, or the source version when not installed (looked up
@@ -143,6 +150,7 @@ def provenance_attrs(title, config_yaml, settings):
         "title": title,
         "package_version": package_version(),
         "git_commit": git_commit(),
+        "model_fingerprint": model_fingerprint(),
         "config": config_yaml,
         "solver": "quasi_static",
         "solver_settings": str(settings),
@@ -411,7 +419,8 @@ def failed_dataset(bearing, ops, config_yaml, message):
                             {"units": "1", "long_name": CASE_VARIABLES["converged"][2]})
     ds = xr.Dataset({"converged": converged}, coords=coords)
     ds.attrs.update({"Conventions": "CF-1.10", "title": "failed design", "package_version": package_version(),
-                     "git_commit": git_commit(), "config": config_yaml, "error": message,
+                     "git_commit": git_commit(), "model_fingerprint": model_fingerprint(), "config": config_yaml,
+                     "error": message,
                      "created": utc_now()})
     return ds
 

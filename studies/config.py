@@ -273,6 +273,9 @@ def validate(study):
              f"<= refine.initial_step = {rf['initial_step']}")
     _require(_is_number(rf.get("active_tolerance")) and 0.0 <= rf["active_tolerance"] < 0.5,
              "refine.active_tolerance", rf.get("active_tolerance"), "a number in [0, 0.5)")
+    _require(_is_int(rf.get("restarts"), 0), "refine.restarts", rf.get("restarts"), "an integer >= 0")
+    _require(_is_number(rf.get("restart_shrink")) and 0.0 < rf["restart_shrink"] <= 1.0, "refine.restart_shrink",
+             rf.get("restart_shrink"), "a number in (0, 1]")
     c = s.get("constraints", {})
     _require(_is_number(c.get("axial_displacement_max")) and c["axial_displacement_max"] > 0.0,
              "constraints.axial_displacement_max", c.get("axial_displacement_max"), "a number > 0 [mm]")

@@ -186,7 +186,8 @@ class DesignSearch:
     def attrs(self):
         """Dataset attributes: provenance of the simulation and the result-defining study config."""
         ref = next(iter(self.references.values())).ds
-        prov = {k: ref.attrs[k] for k in ("package_version", "git_commit", "solver", "solver_settings", "sources")
+        prov = {k: ref.attrs[k] for k in ("package_version", "git_commit", "model_fingerprint", "solver",
+                                          "solver_settings", "sources")
                 if ref is not None and k in ref.attrs}
         return {"Conventions": "CF-1.10", "title": f"design search {self.study.name}: full simulations",
                 **prov, **self.config_attrs()}
@@ -203,13 +204,17 @@ class DesignSearch:
 
     def own_points(self, path, advice):
         """The per-point table stored at ``path``; refuses one made with another result-defining
-        configuration (``advice``: what to do, followed by the folder to delete)."""
+        configuration or by another version of the simulation code (the SHA-256 of ``sim/``,
+        ``model_fingerprint``: its points would mix with new ones computed by other physics)
+        (``advice``: what to do, followed by the folder to delete)."""
         ds = table_from_file(xr.load_dataset(path))
         want = self.attrs()
-        for key in ("study_config", "simulation_config"):
-            if ds.attrs.get(key) != want[key]:
-                raise StudyConfigError(f"{path} was made with another {key.replace('_', ' ')}; "
-                                       f"{advice} {Path(path).parent} to start afresh")
+        for key in ("study_config", "simulation_config", "model_fingerprint"):
+            if ds.attrs.get(key) != want.get(key):
+                what = ("version of the simulation code (sim/ sources)" if key == "model_fingerprint"
+                        else key.replace("_", " "))
+                raise StudyConfigError(f"{path} was made with another {what}; {advice} {Path(path).parent} to start "
+                                       "afresh")
         return ds
 
     def save_training(self, ds):
@@ -461,7 +466,7 @@ class DesignSearch:
 
         u0 = self.space.unit(design_matrix(ds, self.space)[i])[0]
         self.local = local_refine(evaluate, u0, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
-                                  float(r.active_tolerance))
+                                  float(r.active_tolerance), int(r.restarts), float(r.restart_shrink))
         # the first margin is the simulation's own (0 whenever it gave a result): no constraint to report
         self.local.active_constraints = [c for c in self.local.active_constraints if c != self.limits.names[0]]
         return xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")

@@ -211,7 +211,7 @@ class ParetoFront:
 
         names = [*self.margin_names, *(["epsilon"] if level is not None else [])]
         return local_refine(evaluate, u0, names, int(r.max_simulations), float(r.initial_step), float(r.final_step),
-                            float(r.active_tolerance))
+                            float(r.active_tolerance), int(r.restarts), float(r.restart_shrink))
 
     def start(self, earlier):
         """Unit-cube start of the local runs: the best point for x by rank_key (feasible by

@@ -61,13 +61,6 @@ SAMPLE_CHUNK = 64
 # on the pinion study (initial_step 0.05 is 5 % of each range; 0.02 keeps starts that are closer
 # than one first step apart from being counted twice), engineering choice.
 DISTINCT_STARTS = 0.02
-# Polish of the best end: at most POLISH_ROUNDS more COBYLA runs from the best point so far, the
-# first step shrinking by POLISH_SHRINK each round (0.05 -> 0.01 -> 0.002 of each range for the
-# study's refine.initial_step), engineering choice: the runs from the dense sample end 0.5-5 %
-# apart (pinion and size_32208, first runs of this command), so one trust-region run is not
-# trusted to have converged.
-POLISH_ROUNDS = 3
-POLISH_SHRINK = 0.2
 
 
 class PointStore:
@@ -185,20 +178,18 @@ def run(search, n_sobol, seed, n_starts, max_per_start, log, extra_starts=()):
         log(f"start {k + 1} of {len(starts)} ({label}): {res.evaluations} points, {search.objective} "
             f"{res.start_value:.6g} -> {res.value:.6g} ({'feasible' if res.feasible else 'infeasible'})")
 
-    # polish: COBYLA again from the best point, with a first step POLISH_SHRINK times smaller each
-    # round, while a round improves on the best (the slice-quantised objective stalls a trust region)
-    step = float(r.initial_step)
+    # polish: COBYLA again from the best point of all starts, as the study's local stage restarts
+    # (refine.restarts runs at most, each first step refine.restart_shrink times the previous one,
+    # while a run improves on the best: one trust-region run is not trusted to have converged)
     Xa, fa, Ma = store.ranked(visited)
-    for k in range(POLISH_ROUNDS):
-        step *= POLISH_SHRINK
-        before = rank_key(fa[0], Ma[0])
-        res = local_refine(evaluate, space.unit(Xa[0])[0], search.limits.names, max_per_start, step,
-                           float(r.final_step), float(r.active_tolerance))
+    if int(r.restarts) > 0:
+        shrink = float(r.restart_shrink)
+        res = local_refine(evaluate, space.unit(Xa[0])[0], search.limits.names, max_per_start * int(r.restarts),
+                           float(r.initial_step) * shrink, float(r.final_step), float(r.active_tolerance),
+                           int(r.restarts) - 1, shrink)
         Xa, fa, Ma = store.ranked(visited)
-        log(f"polish {k + 1}: first step {step:g}, {res.evaluations} points, {search.objective} "
-            f"{res.start_value:.6g} -> {fa[0]:.6g}")
-        if not rank_key(fa[0], Ma[0]) < before:
-            break
+        log(f"polish: {res.runs} runs, {res.evaluations} points, {search.objective} {res.start_value:.6g} -> "
+            f"{fa[0]:.6g}")
     best_x, best_f, best_m = Xa[0], float(fa[0]), Ma[0]
     feasible = violation(best_m) == 0.0 and np.isfinite(best_f)
     u = space.unit(best_x)[0]
@@ -230,7 +221,8 @@ def run(search, n_sobol, seed, n_starts, max_per_start, log, extra_starts=()):
         "starts_reaching": {f"{t:g}": int(sum(1 for _, _, res in ends if res.feasible and feasible
                                               and res.value <= best_f * (1.0 + t))) for t in REACHED},
         "refine": {"initial_step": float(r.initial_step), "final_step": float(r.final_step), "max_per_start":
-                   int(max_per_start), "active_tolerance": tol},
+                   int(max_per_start), "active_tolerance": tol, "polish_runs": int(r.restarts),
+                   "polish_shrink": float(r.restart_shrink)},
     }
     return result
 

@@ -13,7 +13,7 @@ from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
 from sim.physics.contact import contact_modulus, hertz_line_pressure
-from sim.physics.elasticity import ELASTICITY_MODES, SliceElasticity, influence_matrix
+from sim.physics.elasticity import ELASTICITY_MODES, SliceElasticity, influence_matrix, loaded_lengths
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.roller_contact import BearingArrays, empty_frames
 from sim.solvers.quasi_static import BodyLoads, NewtonSettings, QuasiStaticProblem, RollerSet, solve_bearing
@@ -235,7 +235,8 @@ class BearingModel:
             line_load (Z, 2, N) [N/mm], pressure (Z, 2, N) [MPa], Q (Z, 2) [N], Q_rib (Z,) [N],
             rib_contact (Z, 4) (rib contact point (r, z) [mm] on the roller end and unit rib
             normal (r, z) into the rib in the roller's meridian plane; the rib load acts on the
-            roller along -normal; zeros for the TSRB), roller_loads (Z, 3) as applied, frames
+            roller along -normal; zeros for the TSRB), roller_loads (Z, 3) as applied, free (Z, 2, N)
+            free penetrations of the slices [mm] (:func:`sim.physics.elasticity.free_penetrations`), frames
             (:data:`sim.physics.roller_contact.ContactFrames` of the Z rollers at the returned
             poses when converged: slice contact points and normals, roller centres and axes,
             roller-end / rib points), and solver_info (roller iterations, contact evaluations,
@@ -252,7 +253,8 @@ class BearingModel:
                 raise InputError(f"roller_loads must be a finite array of shape ({g.Z}, 3), got shape {ext.shape}")
         problem = QuasiStaticProblem(self.bearing, self.elasticity, self.newton, self.body_loads(op))
         rollers = RollerSet(np.zeros((g.Z, 3)), np.zeros((g.Z, 2, n)), np.zeros((g.Z, 2, n), dtype=np.bool_),
-                            np.zeros((g.Z, 2)), np.zeros(g.Z), np.zeros((g.Z, 4)), empty_frames(g.Z, n))
+                            np.zeros((g.Z, 2)), np.zeros(g.Z), np.zeros((g.Z, 4)), empty_frames(g.Z, n),
+                            np.zeros((g.Z, 2, n)))
         poses, q, active = rollers.poses, rollers.q, rollers.active
         totals = np.zeros(3, dtype=np.int64)  # roller iterations, contact evaluations, ring backtracks
         reports = []
@@ -321,7 +323,8 @@ class BearingModel:
         return dict(converged=bool(converged), iterations=int(iterations),
                     residual=np.array([last.residual_axial, last.residual_radial]), wall_time=wall_time_s, ring=ring,
                     poses=poses, line_load=q, pressure=pressure, Q=rollers.Q, Q_rib=rollers.Q_rib,
-                    rib_contact=rollers.rib_contact, roller_loads=ext, frames=rollers.frames, solver_info=solver_info)
+                    rib_contact=rollers.rib_contact, roller_loads=ext, frames=rollers.frames, free=rollers.free,
+                    solver_info=solver_info)
 
 
 def roller_shift_relative_to_inner_ring(g, xi, ring, tilt):
@@ -355,8 +358,13 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     j = int(np.argmax(raw["Q"].sum(axis=1)))  # most loaded roller
     xi_rel = roller_shift_relative_to_inner_ring(g, raw["poses"][:, 0], raw["ring"], np.radians(op.tilt_deg))
     thr = float(output_cfg["contact_pressure_threshold"])
-    loaded = p[j] > thr                       # (2, N)
-    length = loaded.sum(axis=1) * w           # (2,) mm
+    # loaded length (2,) [mm]: slices above the threshold pressure, the contact ends placed between
+    # slice centres (sim.physics.elasticity.loaded_lengths), continuous where a slice enters contact
+    strips = np.zeros(n)
+    length = np.zeros(2)
+    for s in range(2):
+        loaded_lengths(np.ascontiguousarray(raw["free"][j, s]), p[j, s] > thr, w, strips)
+        length[s] = strips.sum()
     L_eff = float(length.min())
     interior = p[j][:, 1:-1].max(axis=1) if n > 2 else p[j].max(axis=1)
     ends = np.maximum(p[j][:, 0], p[j][:, -1])

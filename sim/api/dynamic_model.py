@@ -105,7 +105,7 @@ def prepare(model, friction, op, dyn):
     # the run updates frames, line loads and rib data in place: its own copies
     frames = type(case.frames)(*(np.array(x, copy=True) for x in case.frames))
     bearing = case.bearing._replace(q=case.bearing.q.copy(), Qrib=case.bearing.Qrib.copy(),
-                                    nrib=case.bearing.nrib.copy())
+                                    nrib=case.bearing.nrib.copy(), free=case.bearing.free.copy())
     case = case._replace(frames=frames, bearing=bearing)
     problem = DynamicProblem(model.bearing, model.elasticity, case, body)
     refresh_film(problem, y0, wR, raw["Q"].sum(axis=1) > 0.0)
@@ -214,6 +214,7 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
     raw = dict(converged=bool(integ.steady), iterations=int(integ.windows), wall_time=wall_time,
                ring=yl[o_ring:o_ring + 2].copy(), poses=roller[-1][:, [XI, ETA, THETA]].copy(), line_load=q,
                pressure=model.hertz_pressure(q), Q=rol[-1][:, [RO_QO, RO_QI]], Q_rib=rol[-1][:, RO_QRIB],
+               free=dcase.problem.case.bearing.free.copy(),
                residual=np.zeros(2))
     summary = case_results(model, op, raw, output_cfg)
     if not integ.steady:

@@ -152,7 +152,8 @@ class FrictionModel:
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), R_end=float(a["rib"][2]), x_end=float(a["rib"][0]),
-                                nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe)
+                                nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe,
+                                free=raw["free"])
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
         psi = np.zeros(Z)               # roller skews [rad] (stay 0 without friction.skew)

@@ -272,6 +272,74 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
 
 
 @kernel
+def free_penetrations(d, C, q, out):
+    """Penetration left to each slice after the deflection the other slices' loads cause [mm].
+
+    out_k = d_k - sum_{i != k} C_ki q_i (``C`` zero for independent slices: out = d). On a loaded
+    slice of the coupled model it is the slice's own deflection u_self(q_k) > 0 (the
+    complementarity condition of :func:`coupled_slice_loads`), on an unloaded slice minus the gap
+    that the neighbours' deflection opens (<= 0, up to the solve's tolerance). Both tend to 0
+    where a slice enters or leaves contact, so the field is continuous in the roller's pose:
+    :func:`loaded_lengths` places the contact ends by its zero crossings.
+
+    d (N,): rigid penetrations [mm]; C (N, N): off-diagonal influence numbers [mm per N/mm];
+    q (N,): line loads [N/mm]; out (N,): written.
+    """
+    n = d.shape[0]
+    for k in range(n):
+        s = 0.0
+        for i in range(n):
+            if q[i] > 0.0:
+                s += C[k, i] * q[i]
+        out[k] = d[k] - s
+
+
+@kernel
+def loaded_lengths(free, loaded, w, out):
+    """Loaded length of each slice strip [mm]: the contact ends placed between slice centres.
+
+    The strip of slice k is [x_k - w/2, x_k + w/2] (centres w apart, the end strips reach the
+    roller ends). The contact is where the piecewise-linear interpolant of the signed field
+    f_k = free_k on loaded slices (> 0), min(free_k, 0) on unloaded ones (:func:`free_penetrations`)
+    between the slice centres is positive, extended as a constant from the end centres to the
+    roller ends; ``out[k]`` is its length inside strip k. A strip counts fully when it and its
+    neighbours are loaded, and a contact end between a loaded slice k and an unloaded k + 1 lies
+    at x_k + w f_k / (f_k - f_{k+1}): at the slice's own deflection against the gap the
+    neighbours open. Where a slice enters or leaves contact (f_k -> 0) the end reaches its
+    centre from both sides, so the total loaded length is continuous in the pose, where counting
+    loaded slices (w each) steps by w. For one contact zone, the sum equals the loaded-slice
+    count times w whenever the end fields are equal and opposite (f_k = -f_{k+1}).
+
+    free (N,): free penetrations [mm]; loaded (N,) bool: slices with load; w: slice width [mm];
+    out (N,): written [mm].
+    """
+    n = free.shape[0]
+    for k in range(n):
+        out[k] = 0.0
+    if n == 0:
+        return
+    fprev = free[0] if loaded[0] else min(free[0], 0.0)
+    if fprev > 0.0:
+        out[0] += 0.5 * w
+    for k in range(n - 1):
+        fnext = free[k + 1] if loaded[k + 1] else min(free[k + 1], 0.0)
+        if fprev > 0.0 and fnext > 0.0:
+            out[k] += 0.5 * w
+            out[k + 1] += 0.5 * w
+        elif fprev > 0.0:           # contact ends in (x_k, x_k+1]: t w from x_k
+            t = fprev / (fprev - fnext)
+            out[k] += min(t, 0.5) * w
+            out[k + 1] += max(t - 0.5, 0.0) * w
+        elif fnext > 0.0:           # contact starts in [x_k, x_k+1): t w before x_k+1
+            t = fnext / (fnext - fprev)
+            out[k + 1] += min(t, 0.5) * w
+            out[k] += max(t - 0.5, 0.0) * w
+        fprev = fnext
+    if fprev > 0.0:
+        out[n - 1] += 0.5 * w
+
+
+@kernel
 def _load_from_self_deflection(u, w, R, E_star):
     """Line load [N/mm] whose self deflection is u [mm] (fixed point on the slowly varying log)."""
     q = u * np.pi * E_star / (2.0 * WIDE_STRIP_LOG_START)

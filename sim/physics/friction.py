@@ -21,7 +21,10 @@ n (into the ring) and rolling tangent a = n x e_t:
   M = (F_h + F_y) R_eq about a, opposing the relative rolling omega_rel.a, on roller and ring;
   its power is (F_h + F_y) times the rolling speed. (5.18) in this form: the solid rolling
   share Phi M_T,S,r is the micro-slip of the asperity contacts, which the width integration of
-  the Phi-weighted solid traction resolves explicitly; it has no separate coefficient.
+  the Phi-weighted solid traction resolves explicitly; it has no separate coefficient. The
+  lubricant's F_h of a slice strip covers its loaded length (contact ends between slice centres,
+  :func:`sim.physics.elasticity.loaded_lengths`) at the mean line load of the contact, so the loss
+  is continuous where a slice enters or leaves contact (:func:`lubrication_state`).
 - film viscosity in the traction: per contact, the ambient viscosity lowered by the contact's
   own shear heating (:func:`_viscosity_factor`: flash + mid-film temperature, solved
   self-consistently at the speeds of the previous kinematic pass, like the film thickness),
@@ -100,6 +103,7 @@ from sim.physics.ehl import (film_line, film_point, film_temperature_rise, film_
                              rolling_moment_hydrodynamic, solid_load_share, thermal_loading, film_thermal_factor_gupta,
                              traction_eyring, traction_per_speed, traction_solid, viscosity_at_pressure,
                              viscosity_log_ratio)
+from sim.physics.elasticity import loaded_lengths
 
 # Loss and torque channels of the kernels (order of the DATA.md `component` coordinate).
 COMPONENTS = ["rolling", "hysteresis", "sliding", "drilling", "rib", "cage", "drag"]
@@ -193,10 +197,12 @@ ContactLoads = namedtuple("ContactLoads", [
     "x_end",        # roller-end sphere centre along u' from the roller centre [mm] (TRB; ``rib[0]``)
     "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
+    "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.free_penetrations)
 ])
 
 # Film, load share, rolling resistance, Hertz data and film viscosity of every contact, written by
-# :func:`lubrication_state` and fixed while the kinematics are solved (0 where unloaded).
+# :func:`lubrication_state` and fixed while the kinematics are solved (0 where unloaded; Fh also on
+# the unloaded part of a strip at a contact end, sim.physics.elasticity.loaded_lengths).
 FilmState = namedtuple("FilmState", [
     "h",            # (Z, 2, N) film thickness [mm]
     "Phi",          # (Z, 2, N) solid load share [1]
@@ -395,6 +401,8 @@ def lubrication_state(wR, wc, wi, active, case):
     n = q.shape[2]
     Ep = 2.0 * E_star                  # E' of the EHL film formulas [MPa]
     pts = np.empty((NWP, quad.wq.shape[0]))
+    lengths = np.empty(n)
+    loaded = np.empty(n, dtype=np.bool_)
     for j in range(Z):
         if not active[j]:
             continue
@@ -404,19 +412,44 @@ def lubrication_state(wR, wc, wi, active, case):
         uz = Ax[j, 1]
         for s in range(2):
             Om = -wc if s == 0 else wi - wc
+            # EHL rolling force of the strips: per unit length at the contact's mean line load
+            # (it hardly depends on the load: W^0.0126, rolling_force_hydrodynamic) over the
+            # loaded length of each strip (contact ends between slice centres,
+            # sim.physics.elasticity.loaded_lengths), so the loss is continuous where a slice
+            # enters or leaves contact, as the contact length is
+            Qs = 0.0
+            for k in range(n):
+                loaded[k] = q[j, s, k] > 0.0
+                Qs += w * q[j, s, k]
+            loaded_lengths(brg.free[j, s], loaded, w, lengths)
+            Ls = lengths.sum()
+            q_mean = Qs / Ls if Ls > 0.0 else 0.0
             for k in range(n):
                 qk = q[j, s, k]
-                if qk <= 0.0:
-                    h[j, s, k] = 0.0
-                    Phi[j, s, k] = 0.0
-                    Fh[j, s, k] = 0.0
-                    Fy[j, s, k] = 0.0
-                    p0[j, s, k] = 0.0
-                    b[j, s, k] = 0.0
+                h[j, s, k] = 0.0
+                Phi[j, s, k] = 0.0
+                Fh[j, s, k] = 0.0
+                Fy[j, s, k] = 0.0
+                p0[j, s, k] = 0.0
+                b[j, s, k] = 0.0
+                if qk <= 0.0 and (lengths[k] <= 0.0 or par.boundary_only):
                     continue
                 v1, v2 = _surface_speeds(wR[j], Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
                 u = 0.5 * abs(v1 + v2)
                 R = R_eq[s, k]
+                if lengths[k] > 0.0 and not par.boundary_only:
+                    # inlet shear heating lowers the Poiseuille rolling force (Zhou & Hoeprich 1991
+                    # eq. 22, factor of Gupta et al. 1992), here at the mean line load's pressure
+                    phi_R = 1.0
+                    if par.inlet_heating and u > 0.0:
+                        phi_R = film_thermal_factor_gupta(hertz_line_pressure(q_mean, R, E_star), Ep,
+                                                          thermal_loading(par.eta0, par.beta, u, par.k_oil), (v1 - v2) / u)
+                    # the film retards both surfaces by F each (Reynolds: dissipation 2 u F, couple
+                    # 2 F R, sim.physics.ehl.rolling_moment_hydrodynamic): Fh is the sum of both
+                    Fh[j, s, k] = phi_R * rolling_moment_hydrodynamic(u, q_mean, R, lengths[k], par.eta0, par.alpha,
+                                                                       Ep) / R
+                if qk <= 0.0:
+                    continue
                 bk = hertz_line_half_width(qk, R, E_star)
                 b[j, s, k] = bk
                 p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
@@ -424,13 +457,10 @@ def lubrication_state(wR, wc, wi, active, case):
                     # no entrainment, no film: the solid carries the contact (Phi = 1, boundary
                     # friction), no EHL rolling force and, without rolling, no hysteresis loss;
                     # Eta is left as it is: the traction laws never read it without a film
-                    h[j, s, k] = 0.0
                     Phi[j, s, k] = 1.0
-                    Fh[j, s, k] = 0.0
-                    Fy[j, s, k] = 0.0
                     continue
-                # inlet shear heating thins the film and lowers the Poiseuille rolling force alike
-                # (Zhou & Hoeprich 1991 eq. 22, factor of Gupta et al. 1992)
+                # inlet shear heating thins the film (Zhou & Hoeprich 1991 eq. 22, factor of Gupta
+                # et al. 1992)
                 phi_T = 1.0
                 if par.inlet_heating and u > 0.0:
                     phi_T = film_thermal_factor_gupta(p0[j, s, k], Ep, thermal_loading(par.eta0, par.beta, u, par.k_oil),
@@ -438,9 +468,6 @@ def lubrication_state(wR, wc, wi, active, case):
                 hk = phi_T * film_line(u, qk, R, par.eta0, par.alpha, Ep, par.film)
                 h[j, s, k] = hk
                 Phi[j, s, k] = solid_load_share(hk, par.sigma, par.B_ZH, par.C_ZH)
-                # the film retards both surfaces by F each (Reynolds: dissipation 2 u F, couple
-                # 2 F R, sim.physics.ehl.rolling_moment_hydrodynamic): Fh is the sum of both
-                Fh[j, s, k] = phi_T * rolling_moment_hydrodynamic(u, qk, R, w, par.eta0, par.alpha, Ep) / R
                 Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
                 ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
                 npts = _width_points(p0[j, s, k], bk, par, quad, pts)
@@ -593,8 +620,9 @@ def roller_traction(j, wR, psi, wc, wi, case, ev):
         qs_sum = 0.0    # load-weighted sliding speed [N mm/s / mm]
         q_sum = 0.0
         for k in range(n):
-            if p0[j, s, k] <= 0.0:
-                continue
+            frr = Fh[j, s, k] + Fy[j, s, k]
+            if p0[j, s, k] <= 0.0 and frr <= 0.0:
+                continue    # neither load nor rolling loss: an unloaded strip outside the contact ends
             Xr = X[j, s, k, 0]
             Xz = X[j, s, k, 1]
             nr = Nrm[j, s, k, 0]
@@ -604,7 +632,6 @@ def roller_traction(j, wR, psi, wc, wi, case, ev):
             hk = h[j, s, k]
             phik = Phi[j, s, k]
             eta = Eta[j, s, k]                                   # (len(quad.wq),) [MPa s]
-            frr = Fh[j, s, k] + Fy[j, s, k]
             v1, v2 = _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz)
             st = v1 - v2
             ws = wR * (ur * nr + uz * nz) - Om * nz             # spin about n
@@ -616,7 +643,9 @@ def roller_traction(j, wR, psi, wc, wi, case, ev):
             dz = Xz - cz
             Ft = 0.0
             Mn = 0.0
-            if psi == 0.0:
+            if p0k <= 0.0:
+                pass        # an unloaded strip: rolling loss only (below)
+            elif psi == 0.0:
                 # width integral, y = b sin(t), t in (0, pi/2), both halves (|v| is even in y)
                 for i in range(wq.shape[0]):
                     ct = cos_t[i]

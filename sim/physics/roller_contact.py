@@ -35,7 +35,8 @@ from sim._math.linalg import solve_dense
 from sim.geometry import RACE_LENS
 from sim.physics.contact import (NO_CONTACT, hertz_point_load, lens_penetration, roller_axes, slice_contact_meridian,
                                  to_ring)
-from sim.physics.elasticity import INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, independent_slice_loads
+from sim.physics.elasticity import (INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, free_penetrations,
+                                    independent_slice_loads)
 
 NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'), theta, delta_a, delta_r
 
@@ -68,9 +69,10 @@ ContactFrames = namedtuple("ContactFrames", ["X", "Nrm", "Cen", "Ax", "Xrib"])
 # (row 2N); d (2 N + 1,): their penetrations [mm] (NO_CONTACT for the rib row without a rib);
 # rib_contact (4,): rib contact point (r, z) [mm] on the roller end and the rib's unit normal
 # (r, z) into the rib (the rib load acts on the roller along -n; zeros without a rib);
-# frames: ContactFrames of this roller.
+# frames: ContactFrames of this roller; free (2, N): free penetration of every slice [mm]
+# (sim.physics.elasticity.free_penetrations: the contact ends between slices, loaded_lengths).
 RollerContact = namedtuple("RollerContact", ["pose", "q", "active", "f", "K", "Q", "depth", "G", "d",
-                                             "rib_contact", "frames"])
+                                             "rib_contact", "frames", "free"])
 
 # Slice deflections are solved to at most DEFLECTION_TOL_REL of the roller's deepest penetration:
 # its loads are then accurate to ~1e-12 relative, 100x below the final roller tolerance of the
@@ -93,7 +95,7 @@ def empty_roller_contact(n):
     frames = ContactFrames(np.zeros((2, n, 2)), np.zeros((2, n, 2)), np.zeros(2), np.zeros(4), np.zeros(2))
     return RollerContact(np.zeros(3), np.zeros((2, n)), np.zeros((2, n), dtype=np.bool_), np.zeros(NY),
                          np.zeros((NY, NY)), np.zeros(3), np.zeros(3), np.zeros((2 * n + 1, NY)),
-                         np.zeros(2 * n + 1), np.zeros(4), frames)
+                         np.zeros(2 * n + 1), np.zeros(4), frames, np.zeros((2, n)))
 
 
 @kernel
@@ -221,6 +223,7 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
         if elasticity.mode == INDEPENDENT:
             independent_slice_loads(d, elasticity.k_line, qs, dq)
             for k in range(n):
+                state.free[s, k] = d[k]
                 act[k] = qs[k] > 0.0
                 if act[k]:
                     for a in range(NY):
@@ -232,6 +235,7 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
             conv, its = coupled_slice_loads(d, elasticity.C, w, bearing.R_eq[s], elasticity.E_star, qs, act,
                                             min(DEFLECTION_TOL_ABS, DEFLECTION_TOL_REL * max(dmax, 0.0)))
             ok = ok and conv
+            free_penetrations(d, elasticity.C, qs, state.free[s])
             m = 0
             for k in range(n):
                 if act[k]:

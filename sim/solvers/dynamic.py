@@ -233,7 +233,7 @@ def rhs(y, problem, work, dy, rol, tot, ring_rows):
         frames = case.frames
         state = RollerContact(pose, case.bearing.q[j], work.active[j], f, K, work.Q, work.depth, work.G, work.d,
                               work.ribc, ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j],
-                                                       frames.Xrib[j]))
+                                                       frames.Xrib[j]), case.bearing.free[j])
         roller_contact(ring, 0.0, 1.0, bearing, problem.elasticity, state)
         ur = frames.Ax[j, 0]
         uz = frames.Ax[j, 1]

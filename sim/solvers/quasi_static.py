@@ -92,8 +92,9 @@ QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", 
 # loaded flags per race (0 outer, 1 inner); Q (Z, 2): roller-raceway loads [N]; Q_rib (Z,): rib
 # loads [N]; rib_contact (Z, 4): rib contact point (r, z) [mm] on the roller end and unit rib
 # normal (r, z) into the rib, in the roller's meridian plane (zeros without a rib or for a roller
-# not in equilibrium); frames: sim.physics.roller_contact.ContactFrames of the Z rollers.
-RollerSet = namedtuple("RollerSet", ["poses", "q", "active", "Q", "Q_rib", "rib_contact", "frames"])
+# not in equilibrium); frames: sim.physics.roller_contact.ContactFrames of the Z rollers; free
+# (Z, 2, N): free penetrations of the slices [mm] (sim.physics.elasticity.free_penetrations).
+RollerSet = namedtuple("RollerSet", ["poses", "q", "active", "Q", "Q_rib", "rib_contact", "frames", "free"])
 
 # What solve_bearing reports: converged; iterations (ring Newton iterations; axisymmetric case:
 # Newton iterations of the load-controlled roller); residual_axial, residual_radial: force
@@ -550,6 +551,7 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
         copy_vector(pose, trial.pose)
         copy_matrix(state.q, trial.q)
         copy_matrix(state.active, trial.active)
+        copy_matrix(state.free, trial.free)
         copy_vector(f, trial.f)
         copy_matrix(state.K, trial.K)
         copy_vector(Q, trial.Q)
@@ -640,6 +642,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     q = rollers.q
     active = rollers.active
     frames = rollers.frames
+    free = rollers.free
     tol = settings.tolerance
     max_iter = settings.max_iterations
     nbt = settings.line_search_halvings
@@ -664,7 +667,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     trial = RollerContact(np.empty(3), np.empty((2, n)), np.empty((2, n), dtype=np.bool_), np.empty(NY),
                           np.empty((NY, NY)), np.empty(3), np.empty(3), np.empty((2 * n + 1, NY)), np.empty(2 * n + 1),
                           np.empty(4), ContactFrames(np.empty((2, n, 2)), np.empty((2, n, 2)), np.empty(2), np.empty(4),
-                                                     np.empty(2)))
+                                                     np.empty(2)), np.empty((2, n)))
     work = RollerWork(trial, np.empty(2), np.empty(NQ), np.empty(NQ), np.empty(NQ), np.empty(NQ), np.empty((NQ, NQ)),
                       np.empty((NQ, NQ)), np.empty(NQ))
     Rq = work.residual
@@ -753,7 +756,8 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                     q[j].fill(0.0)
                     active[j].fill(False)
             state = RollerContact(poses[j], q[j], active[j], f, K, Qc, depth, G, dpen, ribc,
-                                  ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j], frames.Xrib[j]))
+                                  ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j], frames.Xrib[j]),
+                                  free[j])
             st, its, nev = solve_roller(ring, phi, cpsi, ext[j], problem, roller_tol, control, state, work)
             roller_its += its
             roller_evals += nev
@@ -938,6 +942,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                 for k in range(n):
                     q[j, s, k] = q[src, s, k]
                     active[j, s, k] = active[src, s, k]
+                    free[j, s, k] = free[src, s, k]
             rollers.Q_rib[j] = rollers.Q_rib[src]
             for a in range(4):
                 rollers.rib_contact[j, a] = rollers.rib_contact[src, a]

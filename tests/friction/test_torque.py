@@ -177,7 +177,11 @@ DEVIATIONS = {
                              "W^0.25-0.3 fit (Zhou & Hoeprich 1991, used in MBS models like the thesis's) loads it "
                              "onto fewer, busier slices instead"),
     ("kappa_up", "pmax", "combined"): "kappa 0.99: pmax +5 % here under combined load (pure axial: -3 %, as the thesis)",
-    ("aPk_up", "torque", "combined"): APK_REASON,   # pure axial: torque -, as the thesis (since issue 14)
+    ("aPk_up", "torque"): ("aPk 4.25 -> 5.5 mm: drilling +25 % (the contact zones further from the pitch line), "
+                           "the rolling loss unchanged (the contact length moves by less than a slice). The "
+                           "pure-axial case passed before only because a slice left the contact there and cut the "
+                           "rolling loss by 6 % (slice quantisation, gone with the contact ends between slices). "
+                           + APK_REASON),
     ("aPk_up", "pmax", "pure axial"): APK_REASON,
     ("aPk_down", "torque"): APK_REASON,
     ("aPk_down", "pmax"): APK_REASON,
@@ -242,3 +246,23 @@ def test_cage_pocket_friction_enters_the_load_distribution():
     assert float(rough.torque_component.sel(component="cage")) > 0.0
     omega_i = np.pi * float(rough.speed) / 30.0
     assert abs(float(rough.torque) - float(rough.power_loss) * 1e3 / omega_i) <= 1e-3 * float(rough.torque)
+
+
+def test_torque_has_no_steps_where_slices_enter_or_leave_contact():
+    """The EHL rolling force per unit length hardly depends on the load (Goksem & Hargreaves,
+    W^0.0126), so a rolling loss counted per loaded slice stepped by a whole slice's share when a
+    slice left contact: 0.6 % of the torque on this pinion TSRB (35 kN, 1100 rpm; aPk 10.075 ->
+    10.1 mm near the study's optimum), against a trend of 0.04 % per 0.025 mm. With the loss over
+    the loaded length of each strip (contact ends between slice centres), the torque is
+    continuous: over an aPk sweep in which slices leave the contact, no step exceeds twice the
+    median step (a step of one slice's share would be ~15 times it)."""
+    design = ["bearing.PCR=50.4", "bearing.kappa=0.989", "bearing.aP=6.0", "bearing.alpha=32.0"]
+    load = ["lubricant=pinion_oil", "load.Fa=35000", "load.Fr=0", "load.speed=1100", "load.oil_temperature=50"]
+    torque, loaded = [], []
+    for aPk in np.linspace(9.8, 11.0, 25):
+        case = run("tsrb_pinion", *design, f"bearing.aPk={aPk:.4f}", *load)
+        torque.append(float(case.torque))
+        loaded.append(int((case.pressure > 0.0).sum()))
+    assert len(set(loaded)) >= 2, loaded                  # slices did enter or leave the contact
+    steps = np.abs(np.diff(torque))
+    assert steps.max() < 2.0 * np.median(steps), (steps.max(), np.median(steps))

@@ -13,9 +13,10 @@ import optuna
 import pytest
 import xarray as xr
 
+from sim.io import write_netcdf_atomic
 from studies.config import compose
 from studies.constraints import FAILED
-from studies.evaluate import STATUS, table_from_file
+from studies.evaluate import STATUS, table_from_file, table_to_file
 from studies.loop import DesignSearch
 from studies.report import ratio_in_words, write_report
 from studies.search import make_sampler, open_study, run_trials, trial_margins
@@ -111,6 +112,20 @@ def test_changed_settings_are_refused_on_resume(finished):
     search, _, _ = finished
     with pytest.raises(ValueError, match="another study config"):
         search_in(search.out, "study.bounds.PCR=[40.0,150.0]").run()
+
+
+def test_points_of_another_simulation_code_are_refused_on_resume(finished, tmp_path):
+    """training.nc computed by another version of sim/ (its model_fingerprint differs, as after a
+    physics change) is refused on resume, naming the reason and the folder: its points would mix
+    with points of other physics."""
+    search, ds, _ = finished
+    stale = table_to_file(ds)
+    stale.attrs["model_fingerprint"] = "0" * 64
+    (tmp_path / "training.nc").parent.mkdir(parents=True, exist_ok=True)
+    write_netcdf_atomic(stale, tmp_path / "training.nc")
+    with pytest.raises(ValueError, match=r"another version of the simulation code \(sim/ sources\)") as err:
+        search_in(tmp_path).run()
+    assert str(tmp_path) in str(err.value)
 
 
 def test_impossible_geometry_is_a_recorded_infeasible_trial(tmp_path):

@@ -52,3 +52,27 @@ def test_budget_limits_the_evaluations():
     r = local_refine(lambda u: (float(np.sum((u - 0.37) ** 2)), np.array([-1.0])), [0.9, 0.9, 0.9], ["slack"],
                      max_evaluations=12, initial_step=0.1, final_step=1e-9, active_tolerance=1e-4)
     assert r.evaluations <= 12
+
+
+def _kinked(u):
+    """min u0 + u1 + 0.3 |u0 - u1| subject to max(1 - u0 - 3 u1, 1 - 3 u0 - u1, 0.6 - u0 - u1) <= 0: a
+    constraint with corners (like pmax, a maximum over slices) and a kinked objective; optimum
+    (0.3, 0.3), f = 0.6, on the third piece."""
+    return float(u[0] + u[1] + 0.3 * abs(u[0] - u[1])), np.array([max(1 - u[0] - 3 * u[1], 1 - 3 * u[0] - u[1],
+                                                                       0.6 - u[0] - u[1])])
+
+
+@pytest.mark.parametrize("start", [[0.9, 0.1], [0.8, 0.6], [0.2, 0.9], [0.95, 0.95]])
+def test_restarts_start_from_the_best_point_and_stop_when_one_gains_nothing(start):
+    """With restarts, each COBYLA run starts from the best point so far, so the result is never
+    worse than one run's; the sequence stops after a run that does not improve on the best (or
+    after ``restarts`` more runs), within the budget of distinct points."""
+    one = local_refine(_kinked, start, ["g"], **SETTINGS)
+    more = local_refine(_kinked, start, ["g"], **SETTINGS, restarts=3, restart_shrink=0.2)
+    assert one.runs == 1 and 2 <= more.runs <= 4
+    assert more.value <= one.value and more.feasible
+    assert more.value == pytest.approx(0.6, abs=1e-4)
+    assert more.evaluations <= SETTINGS["max_evaluations"]
+    capped = local_refine(_kinked, start, ["g"], max_evaluations=20, initial_step=0.1, final_step=1e-6,
+                          active_tolerance=1e-4, restarts=3, restart_shrink=0.2)
+    assert capped.evaluations <= 20   # the restarts share the budget of the stage

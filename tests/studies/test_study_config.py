@@ -50,6 +50,8 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("refine.max_simulations", -1, ["study.refine.max_simulations", "-1", ">= 0"]),
     ("refine.initial_step", 0.0, ["study.refine.initial_step", "0.0", "(0, 1]"]),
     ("refine.final_step", 0.5, ["study.refine.final_step", "0.5", "<= refine.initial_step"]),
+    ("refine.restarts", -1, ["study.refine.restarts", "-1", ">= 0"]),
+    ("refine.restart_shrink", 1.5, ["study.refine.restart_shrink", "1.5", "(0, 1]"]),
     ("acquisition.n_global", 0, ["study.acquisition.n_global", "0", ">= 1"]),
     ("acquisition.n_local", -5, ["study.acquisition.n_local", "-5", ">= 0"]),
     ("acquisition.local_scales", [0.1, 0.0], ["study.acquisition.local_scales", "[0.1, 0.0]", "(0, 1]"]),
