@@ -198,7 +198,7 @@ def test_free_skew_steady_state_matches_the_quasi_static_solver(skew_run):
     assert err_c < 0.005
 
 
-@pytest.mark.xfail(strict=True, reason="measured 6.5 % (0.00258 against 0.00242 deg, TRB 32208 4.5 kN 2000 rpm, "
+@pytest.mark.xfail(strict=True, reason="measured 3.8 % (0.00251 against 0.00243 deg, TRB 32208 4.5 kN 2000 rpm, "
                                        "from zero skew; 0.5 % when started at the quasi-static skew): the skew "
                                        "inside the pocket clearance sits where the friction moment about v' "
                                        "vanishes and that moment is flat in the skew, so the moments the "
@@ -220,9 +220,9 @@ def test_the_transient_converges_with_the_integrator_tolerance():
     with a global error ~ rtol^(k/(k+1)) at order k = 1 ... 5 (Hairer, Norsett & Wanner 1993,
     Solving ODEs I, II.4), an observed order 0.5-0.83: the least-squares order of the cage speed's
     RMS error must lie in [0.5, 1.5] (above 1.5 the reference itself would be in doubt). The
-    torque, which carries the contacts' vibration, converges less orderly (measured: its error
-    stalls at ~3e-2 from rtol 1e-3 to 1e-5, until the steps resolve the contact modes); over the
-    four decades it must still fall by two at least, the least any order >= 0.5 gives."""
+    torque, which carries the contacts' vibration, converges less orderly (its error has stalled
+    over two decades of rtol, until the steps resolve the contact modes; README); over the four
+    decades it must still fall by two at least, the least any order >= 0.5 gives."""
     overrides = ["bearing=tsrb_pinion", "lubricant=pinion_oil", "load.Fa=35000", "load.Fr=0", "load.speed=1100",
                  "load.oil_temperature=50", "solver.dynamic.start=rolling"]
     model, friction, op, plain, dc = dynamic_case(overrides)
