@@ -137,7 +137,7 @@ def test_cache_that_cannot_be_written_warns_once_and_the_case_is_kept(cfg, tmp_p
     def refuse(path, data):
         raise OSError(code, os.strerror(code), str(path))
 
-    monkeypatch.setattr(sweep, "_write_atomic", refuse)
+    monkeypatch.setattr(sweep.io, "write_bytes_atomic", refuse)
     monkeypatch.setattr(sweep, "_warned", set())
     one = cfg.copy()
     one.output.cache_dir = str(tmp_path / "cache")
