@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-from sim.io import write_bytes_atomic, write_netcdf_atomic  # noqa: E402
+from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
 from studies.cycle import DutyCycle  # noqa: E402
 from studies.evaluate import STATUS, case_values, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
@@ -120,7 +120,7 @@ def plot_history(search, vds, refs, path):
     ax.set_title(f"{search.study.name}: optimisation history\n{wrapped(load_case_label(search.study))}", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
 
@@ -139,7 +139,7 @@ def plot_parity(cv, units, path, load_label):
     fig.suptitle(f"surrogate parity, {int(round(100 * next(iter(cv.values())).level))} % intervals (k-fold CV); "
                  f"{load_label}", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
 
@@ -157,7 +157,7 @@ def plot_pressure(datasets, path, load_label):
     axes[0].set_ylabel("pressure [MPa]")
     axes[0].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
 
