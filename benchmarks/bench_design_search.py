@@ -51,7 +51,7 @@ import xarray as xr  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from omegaconf import OmegaConf  # noqa: E402
 
-from sim.io import model_fingerprint, write_netcdf_atomic  # noqa: E402
+from sim.io import model_fingerprint, write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
 from studies.config import compose  # noqa: E402
 from studies.constraints import rank_key  # noqa: E402
 from studies.evaluate import STATUS, design_matrix  # noqa: E402
@@ -237,9 +237,9 @@ def summary(runs, reference, out):
                  fontsize=9)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(out / "convergence.png", dpi=120)
+    write_figure_atomic(fig, out / "convergence.png", 120)
     text = "\n".join(lines) + "\n"
-    (out / "summary.md").write_text(text)
+    write_bytes_atomic(out / "summary.md", text.encode())
     return text
 
 

@@ -12,6 +12,7 @@ import secrets
 import hashlib
 import subprocess
 from importlib import metadata
+from io import BytesIO
 from pathlib import Path
 from typing import NamedTuple
 
@@ -338,6 +339,36 @@ def temporary_path(path):
     later run can tell an interrupted write (dead pid on this host) from a concurrent one."""
     path = Path(path)
     return path.parent / f".{path.name}.{HOST_TAG}-{os.getpid()}-{secrets.token_hex(4)}{TMP_SUFFIX}"
+
+
+def write_bytes_atomic(path, data):
+    """Write bytes through a unique temporary file in the same folder and an atomic rename.
+
+    The file is created with mode 0o666 minus the umask, like any file a program writes
+    (``tempfile.mkstemp`` would give 0o600); a reader sees the old file or the new one, never a
+    partial one. The temporary name carries this host's tag and pid, so that the next run can
+    tell an interrupted write (:func:`sim.api.sweep.remove_stale_files`) from a concurrent one.
+    """
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = temporary_path(path)
+    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+    try:
+        with os.fdopen(fd, "wb") as f:
+            f.write(data)
+        os.replace(tmp, path)
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return path
+
+
+def write_figure_atomic(fig, path, dpi):
+    """Save a matplotlib figure as PNG to ``path`` atomically (rendered in memory, then
+    :func:`write_bytes_atomic`); ``dpi`` [1/inch]."""
+    buf = BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi)
+    return write_bytes_atomic(path, buf.getvalue())
 
 
 def write_netcdf_atomic(ds, path):

@@ -26,6 +26,15 @@ CASE_KEYS = (*LOAD_KEYS, "share")   # keys of a study.duty_cycle entry
 # |sum of the time shares - 1| allowed: shares are written with a few digits, and the float sum of m
 # of them errs by ~m 1e-16, so 1e-9 refuses every real mistake and accepts every exact cycle
 SHARE_SUM_TOLERANCE = 1e-9
+#: allowed values of study.verify.solver: quasi_static (the search's own full simulations only) or
+#: dynamic (the reported best also by the time-domain solver with skew and tilt free)
+VERIFY_SOLVERS = ("quasi_static", "dynamic")
+#: solver variants of a re-simulation (studies.verify): name -> (label, simulation overrides)
+VARIANTS = {
+    "quasi_static": ("quasi-static", []),
+    "quasi_static_skew": ("quasi-static, skew", ["friction.skew.enabled=true"]),
+    "dynamic": ("dynamic, skew and tilt free", ["friction.skew.enabled=true", "solver=dynamic"]),
+}
 DEFAULT_STUDY = "pinion"
 OUTPUT_ROOT = Path("outputs") / "studies"
 
@@ -72,6 +81,14 @@ def simulation_overrides(overrides):
     return out
 
 
+def for_solver(overrides):
+    """``overrides`` without ``solver.dynamic.*`` keys unless they select ``solver=dynamic``: those
+    keys set the dynamic re-simulation of ``study.verify`` only (other configs have no such node)."""
+    if VARIANTS["dynamic"][1][-1] in overrides:
+        return list(overrides)
+    return [o for o in overrides if not o.lstrip("+~").startswith("solver.dynamic.")]
+
+
 def _composed(overrides):
     """``sim.load_config(overrides)``; a composition error (unknown key, bad override syntax, missing
     config) is a StudyConfigError with Hydra's message on one line."""
@@ -87,7 +104,7 @@ def compose(overrides=None):
     the simulations of the study's bearings at its load case included (:func:`check_simulations`),
     before anything is written."""
     simulation_overrides(overrides)
-    cfg = _composed(study_overrides(overrides))
+    cfg = _composed(for_solver(study_overrides(overrides)))
     validate(cfg.study)
     check_simulations(cfg.study, overrides)
     return cfg
@@ -95,8 +112,10 @@ def compose(overrides=None):
 
 def simulation_config(study, bearing, overrides=None, case=None):
     """Composed simulation config of ``bearing`` (a conf/bearing name) at the load case ``case``
-    (a dict of LOAD_KEYS, a case of studies.cycle.DutyCycle; default: ``study.load``)."""
-    cfg = _composed([f"bearing={bearing}", f"lubricant={study.lubricant}", *simulation_overrides(overrides)])
+    (a dict of LOAD_KEYS, a case of studies.cycle.DutyCycle; default: ``study.load``).
+    ``solver.dynamic.*`` overrides are passed on only with ``solver=dynamic``."""
+    passed = for_solver(simulation_overrides(overrides))
+    cfg = _composed([f"bearing={bearing}", f"lubricant={study.lubricant}", *passed])
     for key in LOAD_KEYS:
         cfg.load[key] = float((study.load if case is None else case)[key])
     return cfg
@@ -123,11 +142,18 @@ def check_simulations(study, overrides=None):
     """
     from sim.api.sweep import preflight
 
+    dynamic = study.verify.solver == "dynamic"
     for k, case in enumerate(DutyCycle.from_config(study).cases):
         for role in dict.fromkeys(("bearing", "reference_trb", "thesis_design")):
             name = study[role]
             try:
                 preflight(simulation_config(study, name, overrides, case))
+                if dynamic and role == "bearing":   # the best design's dynamic re-simulation (studies.verify)
+                    cfg = simulation_config(study, name, [*VARIANTS["dynamic"][1], *(overrides or [])], case)
+                    _require(bool(cfg.friction.enabled), "verify.solver", study.verify.solver,
+                             "quasi_static when friction.enabled = false: the dynamic solver's rollers and cage are "
+                             "driven by the raceway traction")
+                    preflight(cfg)
             except (InputError, GeometryError) as err:
                 lines = [_named_load_line(study, k, line) if line.startswith("load.")
                          else f"{line} (in the simulation of study.{role} = {name!r})"
@@ -283,6 +309,9 @@ def validate(study):
     for key in LOAD_KEYS:
         _require(_is_number(load.get(key)), f"load.{key}", load.get(key), "a finite number (checked by the simulation)")
     _validate_duty_cycle(s.get("duty_cycle"))
+    verify = s.get("verify") or {}
+    _require(verify.get("solver") in VERIFY_SOLVERS, "verify.solver", verify.get("solver"),
+             f"one of {list(VERIFY_SOLVERS)} (dynamic: the reported best also by the time-domain solver)")
     for key, group in (("bearing", "bearing"), ("reference_trb", "bearing"), ("thesis_design", "bearing"),
                        ("lubricant", "lubricant")):
         v = s.get(key)

@@ -40,7 +40,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 
 from sim.api import simulate_batch
-from sim.io import write_netcdf_atomic
+from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic
 from studies.config import PARETO_OBJECTIVES, storage_spec
 from studies.constraints import FAILED, margins, rank_key
 from studies.evaluate import RECORDED, design_config, evaluate_design
@@ -308,7 +308,7 @@ def plot_front(front, ds, refs, path, load_label):
         ax.set_yscale("log")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
-    fig.savefig(path, dpi=120)
+    write_figure_atomic(fig, path, 120)
     return path
 
 
@@ -392,7 +392,7 @@ def main(argv=None):
         refs = {f"{label} ({r.bearing})": reference_point(front, label) for label, r in search.references.items()}
         plot_front(front, ds, refs, out / f"front_{name}.png", load_label)
         lines += front_summary(front, ds, refs)
-    (out / "pareto.md").write_text("\n".join(lines) + "\n")
+    write_bytes_atomic(out / "pareto.md", ("\n".join(lines) + "\n").encode())
     log(f"written to {out}/")
     return 0
 

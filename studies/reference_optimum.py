@@ -40,7 +40,7 @@ import numpy as np
 import xarray as xr
 from omegaconf import OmegaConf
 
-from sim.io import temporary_path, utc_now, write_netcdf_atomic
+from sim.io import utc_now, write_bytes_atomic, write_netcdf_atomic
 from studies.constraints import rank_key, violation
 from studies.evaluate import STATUS, design_matrix, table_to_file
 from sim.api.cli import refused
@@ -271,11 +271,7 @@ def main(argv=None):
     result["simulation_overrides"] = list(args.overrides)
     out = search.out / "reference" / "reference_optimum.yaml" if args.out is None else args.out
     text = OmegaConf.to_yaml(OmegaConf.create(result))
-    out = Path(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = temporary_path(out)
-    tmp.write_text(text)
-    tmp.replace(out)
+    write_bytes_atomic(out, text.encode())
     print(text)
     print(f"written to {out}")
     return 0 if result["feasible"] else 1

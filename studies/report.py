@@ -7,7 +7,10 @@ Writes into the study folder:
 - ``best_design.nc``: the full result of the verified best design (pressure included);
 - ``history.png``, ``parity.png``, ``pressure.png``;
 - ``report.md``: the comparison with the reference TRB and the thesis design, and the
-  cross-validation of the final surrogates (also printed).
+  cross-validation of the final surrogates (also printed);
+- with ``study.verify.solver = dynamic`` also ``best_design_dynamic.nc``: the verified best by
+  the time-domain solver with skew and tilt free, its torque and skew in report.md
+  (:func:`studies.verify.dynamic_verification`).
 """
 import textwrap
 
@@ -18,10 +21,11 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-from sim.io import write_netcdf_atomic  # noqa: E402
+from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
 from studies.cycle import DutyCycle  # noqa: E402
 from studies.evaluate import STATUS, case_values, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
+from studies.verify import dynamic_verification  # noqa: E402
 from surrogate import cross_validate_outputs  # noqa: E402
 
 COLUMNS = ("pmax", "axial_displacement", "L_eff", "C_eff", "L10", "edge_stress")
@@ -116,7 +120,7 @@ def plot_history(search, vds, refs, path):
     ax.set_title(f"{search.study.name}: optimisation history\n{wrapped(load_case_label(search.study))}", fontsize=9)
     ax.legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
 
@@ -135,7 +139,7 @@ def plot_parity(cv, units, path, load_label):
     fig.suptitle(f"surrogate parity, {int(round(100 * next(iter(cv.values())).level))} % intervals (k-fold CV); "
                  f"{load_label}", fontsize=9)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
 
@@ -153,7 +157,7 @@ def plot_pressure(datasets, path, load_label):
     axes[0].set_ylabel("pressure [MPa]")
     axes[0].legend(fontsize=7)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
 
@@ -282,6 +286,7 @@ def write_report(search, ds, reason):
                                                     for r in search.references.values()],
                   out / "pressure.png", label if len(search.cycle) == 1 else f"case {k}: {search.cycle.label(k)}")
     s = search.study
+    dynamic = dynamic_verification(search, bearing, results) if s.verify.solver == "dynamic" else None
     several = len(search.cycle) > 1
     n_by = {k: int((ds.status == v).sum()) for k, v in STATUS.items()}
     feasible = "feasible" if key[0] == 0 else f"NO FEASIBLE DESIGN FOUND (least violation {key[1]:.4g})"
@@ -332,7 +337,9 @@ def write_report(search, ds, reason):
         "",
         cv_table(cv),
         "",
-        "Files: verified.nc, best_design.nc, history.png, parity.png, pressure.png, training.nc, surrogates/.",
+        *([dynamic, ""] if dynamic else []),
+        "Files: verified.nc, best_design.nc, history.png, parity.png, pressure.png, training.nc, surrogates/"
+        + (", best_design_dynamic*.nc." if dynamic else "."),
     ])
-    (out / "report.md").write_text(text + "\n")
+    write_bytes_atomic(out / "report.md", (text + "\n").encode())
     return text

@@ -29,6 +29,7 @@ from sim import CONF_DIR
 from sim.api import InputError
 from sim.api.cases import operating_points
 from sim.api.cli import run
+from sim.io import write_figure_atomic
 
 COMPARED = ("trb_32208", "reference")  # in every figure, as the thesis's blue and green bars
 FAMILIES = {  # Table 7.2; torque and pmax figures 7.7/7.8, 7.10/7.11, 7.12/7.13, 7.14/7.15, 7.16/7.17
@@ -86,7 +87,7 @@ def _bar_figure(ds, var, series, title, path):
     ax.set_ylabel(_ylabel(ds, var) + (" (outer ring)" if "race" in ds[var].dims else ""))
     ax.set_title(title)
     fig.legend(loc="outside right upper", fontsize="small")
-    fig.savefig(path, dpi=100)
+    write_figure_atomic(fig, path, 100)
     return path
 
 
@@ -105,7 +106,7 @@ def _line_figure(ds, var, variants, cases, title, path):
     ax.set_ylabel(_ylabel(ds, var))
     ax.set_title(title)
     ax.legend(fontsize="small")
-    fig.savefig(path, dpi=100)
+    write_figure_atomic(fig, path, 100)
     return path
 
 
@@ -126,7 +127,7 @@ def _pressure_figure(ds, cases, path):
         if design.size:
             ax.legend(fontsize="small")
     axes[0].set_ylabel(_ylabel(ds, "pressure") + " (outer ring)")
-    fig.savefig(path, dpi=100)
+    write_figure_atomic(fig, path, 100)
     return path
 
 

@@ -41,7 +41,7 @@ from sim.api import (SKF_TAPERED_CONSTANTS, InputError, TRACTION_LAWS, Geometry,
                      bearing_model_traction_law, operating_points, skf_2004_trb, torque_exponent, traction_curve,
                      twin_disc_contact)
 from sim.api.cli import run
-from sim.io import git_commit, package_version, write_netcdf_atomic
+from sim.io import git_commit, package_version, write_bytes_atomic, write_figure_atomic, write_netcdf_atomic
 
 REPO = CONF_DIR.parent
 TRACTION_DATA = REPO / "tests" / "data" / "traction_twin_disc_mineral_oil.yaml"
@@ -480,7 +480,7 @@ def targets(ds):
 # ------------------------------------------------------------------------------------------ figures
 def _save(fig, out, name):
     path = Path(out) / name
-    fig.savefig(path, dpi=FIGURE_DPI)
+    write_figure_atomic(fig, path, FIGURE_DPI)
     return path.name
 
 
@@ -777,7 +777,7 @@ def write_report(ds, out, figures):
     for f in figures.values():
         a(f"- `{f}`")
     path = Path(out) / "report.md"
-    path.write_text("\n".join(L) + "\n")
+    write_bytes_atomic(path, ("\n".join(L) + "\n").encode())
     return path
 
 

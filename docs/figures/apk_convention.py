@@ -24,6 +24,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import sim  # noqa: E402
+from sim.io import write_figure_atomic  # noqa: E402
 from sim.geometry import Geometry  # noqa: E402
 
 OUT = pathlib.Path(__file__).with_name("apk_convention.png")
@@ -99,7 +100,7 @@ def main():
     ax[1].legend(fontsize=7, ncol=2)
     ax[1].set_title("Model, Fa 4.5 kN (Fig. 7.1 load), 30 slices")
     fig.tight_layout()
-    fig.savefig(OUT, dpi=120)
+    write_figure_atomic(fig, OUT, 120)
     print(f"wrote {OUT}")
     print("\n| convention | Fr [kN] | pressure peaks (slice from large end, of 30) | pmax [MPa] | axial disp. [mm] |")
     print("| --- | --- | --- | --- | --- |")

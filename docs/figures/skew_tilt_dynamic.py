@@ -21,6 +21,7 @@ if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))  # run from a checkout: this sim/, not an installed one
 
 import sim  # noqa: E402
+from sim.io import write_figure_atomic  # noqa: E402
 
 OUT = pathlib.Path(__file__).with_name("skew_tilt_dynamic.png")
 CASE = ["lubricant=pinion_oil", "load.Fa=35000", "load.Fr=0", "load.speed=1100", "load.oil_temperature=50",
@@ -49,7 +50,7 @@ def main():
     ax_s.legend()
     ax_s.set_title("35 kN axial, 1100 rpm, pinion oil 50 degC, skew free, from rolling and no skew", fontsize=10)
     fig.tight_layout()
-    fig.savefig(OUT, dpi=150)
+    write_figure_atomic(fig, OUT, 150)
     print(f"wrote {OUT}")
 
 

@@ -17,7 +17,8 @@ from sim.api.friction_model import film_outputs
 from sim.physics.friction import lubrication_state
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.dynamic import (ETA, HR, NCAGE, NRING, NS, PHI, PSI,
-                                 RO_FP, RO_QI, RO_QO, RO_QRIB, RO_WR, THETA, TO_DAMP, TO_P0, TO_TIN, TO_TOUT, WPHI,
+                                 RO_FP, RO_QI, RO_QO, RO_QRIB, RO_WR, THETA, TO_DAMP, TO_P0, TO_PSKEW, TO_TIN,
+                                 TO_TOUT, WPHI,
                                  XI, DynamicBody, DynamicProblem, DynamicSettings, Integration, roller_axis,
                                  state_size)
 
@@ -235,4 +236,6 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
         power_loss=float(power.sum()) * W_PER_N_MM_PER_S,
         cage_speed=float(y[last, o_cage + 1].mean()) * RPM_PER_RAD_S,
     )
+    if body.skew:   # the lateral-slip part of 'sliding', scaled as the breakdown (FrictionModel.evaluate)
+        summary["skew_sliding"] = torque * float(tot[last, TO_PSKEW].mean()) / power.sum()
     return summary, series

@@ -253,7 +253,7 @@ def _pid_alive(pid):
 
 
 def _writer(name):
-    """(host tag, pid) of a temporary file written by :func:`_write_atomic` or
+    """(host tag, pid) of a temporary file written by :func:`sim.io.write_bytes_atomic` or
     :func:`sim.io.write_netcdf_atomic` (:func:`sim.io.temporary_path`), or None (another writer)."""
     if not name.endswith(TMP_SUFFIX):
         return None
@@ -316,27 +316,6 @@ def remove_stale_files(folder, shards=False):
     if removed:
         log.info("removed %d stale temporary or claim file(s) of interrupted runs in %s", removed, folder)
     return removed
-
-
-def _write_atomic(path, data):
-    """Write bytes through a unique temporary file in the same folder and an atomic rename.
-
-    The file is created with mode 0o666 minus the umask, like any file a program writes
-    (``tempfile.mkstemp`` would give 0o600); a reader sees the old file or the new one, never a
-    partial one. The temporary name carries this host's tag and pid, so that the next run can
-    tell an interrupted write (:func:`remove_stale_files`) from a concurrent one.
-    """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = io.temporary_path(path)
-    fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data)
-        os.replace(tmp, path)
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
 
 
 # ------------------------------------------------------------------ claims: no case computed twice
@@ -467,7 +446,7 @@ def _store(path, ds):
     """Cache a converged case; a cache that cannot be written (full, read-only) is reported once and
     the run goes on (the case is in the run's own result)."""
     try:
-        _write_atomic(path, encode_case(ds))
+        io.write_bytes_atomic(path, encode_case(ds))
     except OSError as exc:
         _warn_unwritable(path.parent.parent, exc)
 
@@ -575,7 +554,7 @@ def run_job(cfg, out_dir, job, overrides):
         message = f"{type(exc).__name__}: {exc}"
         (log.warning if isinstance(exc, ValueError) else log.exception)("%s failed: %s", head, message)
         try:
-            failed.write_text(json.dumps({"job": job, "overrides": list(overrides), "error": message}))
+            io.write_bytes_atomic(failed, json.dumps({"job": job, "overrides": list(overrides), "error": message}).encode())
         except OSError as err:
             log.error("%s: %s cannot be written either (%s): the collector will report the job as missing",
                       head, failed, err)
@@ -775,7 +754,7 @@ class SweepCallback(Callback):
                                                 resolve=True),
                     "jobs": [{"job": num, "overrides": list(o), "config": OmegaConf.to_container(cfg, resolve=True)}
                              for num, (o, cfg) in enumerate(zip(jobs, configs))]}
-        _write_atomic(sweep_dir / MANIFEST, json.dumps(manifest, indent=1).encode())
+        io.write_bytes_atomic(sweep_dir / MANIFEST, json.dumps(manifest, indent=1).encode())
         cases = [(cfg, op, base) for cfg, base in ((c, _key_base(c)) for c in configs)
                  for op in operating_points(cfg.load)]
         log.info("sweep: %d jobs, %d cases, %d already in the cache; results in %s", len(jobs), len(cases),

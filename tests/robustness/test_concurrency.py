@@ -113,7 +113,7 @@ def test_claim_of_a_live_process_is_waited_for_and_its_result_loaded(cfg, counte
         while len(counted) < 3:   # the other run finishes while this one has done the other cases
             time.sleep(0.02)
         time.sleep(0.3)
-        sweep._write_atomic(path, encode_case(done))
+        sweep.io.write_bytes_atomic(path, encode_case(done))
         claim.unlink()
 
     worker = threading.Thread(target=finish_later)

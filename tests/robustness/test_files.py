@@ -137,7 +137,7 @@ def test_cache_that_cannot_be_written_warns_once_and_the_case_is_kept(cfg, tmp_p
     def refuse(path, data):
         raise OSError(code, os.strerror(code), str(path))
 
-    monkeypatch.setattr(sweep, "_write_atomic", refuse)
+    monkeypatch.setattr(sweep.io, "write_bytes_atomic", refuse)
     monkeypatch.setattr(sweep, "_warned", set())
     one = cfg.copy()
     one.output.cache_dir = str(tmp_path / "cache")
@@ -232,3 +232,26 @@ def test_result_files_get_the_users_umask(tmp_path, umask, mode):
         os.umask(old)
     assert os.stat(path).st_mode & 0o777 == mode
     assert [p.name for p in tmp_path.iterdir()] == ["result.nc"]      # no temporary left
+
+
+def test_reports_and_figures_replace_the_old_file_whole_or_not_at_all(tmp_path):
+    """write_bytes_atomic / write_figure_atomic (reports, summaries, plots): a new version replaces
+    the old file whole; a figure that fails while it is drawn leaves the old file as it was and no
+    temporary beside it."""
+    from matplotlib.figure import Figure
+
+    from sim.io import write_bytes_atomic, write_figure_atomic
+
+    report = write_bytes_atomic(tmp_path / "report.md", b"old\n")
+    write_bytes_atomic(report, b"new\n")
+    assert report.read_text() == "new\n"
+    fig = Figure()
+    fig.add_subplot().plot([0, 1], [0, 1])
+    png = write_figure_atomic(fig, tmp_path / "plot.png", 50)
+    before = png.read_bytes()
+    assert before.startswith(b"\x89PNG")
+    fig.axes[0].text(0.5, 0.5, r"$\notacommand$")            # mathtext error while drawing
+    with pytest.raises(ValueError):
+        write_figure_atomic(fig, png, 50)
+    assert png.read_bytes() == before
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["plot.png", "report.md"]

@@ -58,6 +58,7 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("acquisition.local_scales", [], ["study.acquisition.local_scales", "[]", "non-empty"]),
     ("acquisition.n_centres", 0, ["study.acquisition.n_centres", "0", ">= 1"]),
     ("surrogate.calibrate", "yes", ["study.surrogate.calibrate", "'yes'", "true or false"]),
+    ("verify.solver", "adams", ["study.verify.solver", "'adams'", "quasi_static", "dynamic"]),
 ])
 def test_bad_values_fail_at_start_naming_key_value_and_range(pinion, key, value, words):
     assert_study_refused(pinion, key, value, words)

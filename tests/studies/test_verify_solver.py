@@ -1,0 +1,48 @@
+"""study.verify.solver = dynamic (issue 18 item 5, studies.verify.dynamic_verification): the best
+design of a search on a tiny budget (pinion study, 10 slices, 8 Sobol points, no rounds, no local
+stage) is re-simulated by the dynamic solver and the quasi-static solver with skew, and report.md
+carries the numbers of best_design_dynamic.nc."""
+import numpy as np
+import pytest
+import xarray as xr
+
+import sim
+from studies.config import StudyConfigError, compose
+from studies.loop import DesignSearch
+from studies.report import write_report
+
+# solver.dynamic.max_windows=3: the dynamic runs only (studies.config.simulation_config), a time cap; the
+# report gives a run without steady state by its last window, and the test checks it either way
+TINY = ["study.verify.solver=dynamic", "solver.dynamic.max_windows=3", "solver.n_slices=10", "study.initial_design.n=8",
+        "study.budget.max_simulations=8", "study.n_jobs=1", "study.surrogate.n_restarts_optimizer=0",
+        "study.refine.max_simulations=0"]
+
+
+def test_dynamic_verification_without_friction_is_refused_at_start():
+    """The dynamic solver's rollers and cage are driven by traction: with friction off the study is
+    refused before anything runs, naming the key, its value and what it allows."""
+    with pytest.raises(StudyConfigError, match=r"study\.verify\.solver = 'dynamic'.*quasi_static when "
+                                               r"friction\.enabled = false"):
+        compose(["study.verify.solver=dynamic", "friction.enabled=false"])
+
+
+def test_report_gives_the_dynamic_torque_and_skew_of_the_best_design(tmp_path):
+    search = DesignSearch(compose(TINY), TINY, out_dir=tmp_path, log=lambda msg: None)
+    search.run_references()
+    ds, reason = search.run()
+    text = write_report(search, ds, reason)
+    dyn = xr.load_dataset(tmp_path / "best_design_dynamic.nc").isel(design=0, case=0)
+    best = xr.load_dataset(tmp_path / "best_design.nc").isel(design=0, case=0)
+    assert dyn.attrs["solver"] == "dynamic" and int(dyn.iterations) <= 3
+    # the same design: the dynamic run is of the reported best
+    for name in search.space.names:
+        assert float(dyn[name]) == pytest.approx(float(best[name]), rel=1e-12)
+    row = next(line for line in text.splitlines() if line.startswith("| 0 |"))
+    cells = [c.strip() for c in row.strip("|").split("|")]
+    last = dyn.isel(time=slice(-int(sim.load_config(["solver=dynamic"]).solver.dynamic.samples_per_window), None))
+    # printed to 0.1 N mm and 1e-4 deg
+    assert float(cells[1]) == pytest.approx(float(best.torque), abs=0.05)
+    assert float(cells[4]) == pytest.approx(float(last.torque_t.mean()), abs=0.05)
+    assert float(cells[7]) == pytest.approx(float(np.abs(last.roller_skew_t.mean("time")).max()), abs=5e-5)
+    assert cells[9] == str(bool(dyn.converged))
+    assert "best_design_dynamic" in text
