@@ -730,7 +730,9 @@ def write_report(ds, out, figures):
     a(f"\nPinion: {pin.tsrb} / {pin.trb} = {_f(ds.ratio_pinion, '{:.2f}')} "
       f"({_f((float(ds.ratio_pinion) - 1) * 100, '{:+.0f}')} %); thesis 7.4: {float(ds.ratio_pinion_thesis):.2f} "
       f"(+{PINION_EXCESS * 100:.0f} %). The thesis gives no breakdown of its figure; it attributes part of the "
-      "difference to roller skew and tilt (its Fig. 7.28), which the quasi-static solver does not model.\n")
+      "difference to roller skew and tilt (its Fig. 7.28). These cases are without skew (the default): "
+      "with roller skew, quasi-static (friction.skew) and dynamic (solver=dynamic), see "
+      "docs/figures/pinion_breakdown.md.\n")
 
     a("## d. Traction curve\n")
     c = TWIN_DISC
