@@ -8,12 +8,12 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
-from matplotlib.figure import Figure
 
 import sim
 from sim import io
 from sim.api.cases import operating_points
 from sim.api.sweep import run_cases
+from studies import sensitivity
 from studies.sensitivity import FAMILIES, plot_figures
 from tests.sweeps.common import FAST
 
@@ -42,6 +42,6 @@ def test_figures_of_7_2(tmp_path, monkeypatch):
     assert {p.name for p in written} == pmax_only | torque
     assert all(p.stat().st_size > 10_000 for p in written)  # drawn, not empty canvases
 
-    monkeypatch.setattr(Figure, "savefig", lambda self, path, **kw: Path(path).touch())  # names only
+    monkeypatch.setattr(sensitivity, "write_figure_atomic", lambda fig, path, dpi: Path(path).touch())  # names only
     assert {p.name for p in plot_figures(tmp_path / "sweep.nc")} == pmax_only  # no torque in the data
     assert xr.load_dataset(tmp_path / "sweep.nc").variant.values.tolist()[-1] == "PCR_down2"
