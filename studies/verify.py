@@ -14,9 +14,11 @@ import time
 from pathlib import Path
 
 import numpy as np
+from omegaconf import OmegaConf
 
 import sim
-from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic
+from sim.io import (CASE_COORD_ATTRS, git_commit, model_fingerprint, package_version, utc_now, write_bytes_atomic,
+                    write_figure_atomic, write_netcdf_atomic)
 from studies.config import VARIANTS, simulation_config
 from studies.evaluate import design_config
 
@@ -78,13 +80,38 @@ def last_window(c, samples, wi):
             "tilt": float(np.abs(last.roller_tilt_t.mean("time")).max())}
 
 
-def write_results(stem, ds, table, figure):
-    """Write ``ds`` to ``<stem>.nc``, its markdown ``table(ds)`` to ``<stem>.md`` and its matplotlib
-    ``figure(ds)`` to ``<stem>.png``, each atomically (a reader sees the old file or the new one);
-    print the table (the docs/figures scripts of issue 18)."""
+# names of the scripts' tables that DATA.md gives another meaning (case tilt; per-roller skew, tilt)
+NOT_DATA_NAMES = {"skew": "roller_skew_max", "tilt": "roller_tilt_max"}
+
+
+def contract_layout(ds, study):
+    """``ds`` (dims ``bearing``, then the script's own: solver, clearance, ...; at the load case of
+    ``study``) in the results contract (DATA.md): ``bearing`` becomes ``design`` (with
+    ``bearing_type``), a ``case`` of one at the study's load follows it, the largest roller skew and
+    tilt are named apart from DATA.md's per-roller ones, and the provenance attributes are added."""
+    names = [str(b) for b in ds.bearing.values]
+    out = ds.rename({k: v for k, v in NOT_DATA_NAMES.items() if k in ds}).rename(bearing="design")
+    out = out.assign_coords(bearing=("design", names, {"long_name": "bearing (conf/bearing)"}),
+                            bearing_type=("design", [str(simulation_config(study, b).bearing.type) for b in names],
+                                          {"long_name": "bearing type"}))
+    # DATA.md's leading dims first (extra ones may trail): design, case, then component where present
+    out = out.expand_dims("case").transpose("design", "case", *(["component"] if "component" in out.dims else []), ...)
+    out = out.assign_coords({k: ("case", [float(study.load[k])], {"units": u, "long_name": n})
+                             for k, (u, n) in CASE_COORD_ATTRS.items()})
+    out.attrs.update({"Conventions": "CF-1.10", "package_version": package_version(), "git_commit": git_commit(),
+                      "model_fingerprint": model_fingerprint(), "config": OmegaConf.to_yaml(study),
+                      "created": utc_now()})
+    return out
+
+
+def write_results(stem, ds, table, figure, study):
+    """Write ``ds`` to ``<stem>.nc`` in the results contract (:func:`contract_layout`), its markdown
+    ``table(ds)`` to ``<stem>.md`` and its matplotlib ``figure(ds)`` to ``<stem>.png``, each
+    atomically (a reader sees the old file or the new one); print the table (the docs/figures
+    scripts of issue 18)."""
     stem = Path(stem)
     text = table(ds)
-    write_netcdf_atomic(ds, stem.with_suffix(".nc"))
+    write_netcdf_atomic(contract_layout(ds, study), stem.with_suffix(".nc"))
     write_bytes_atomic(stem.with_suffix(".md"), text.encode())
     write_figure_atomic(figure(ds), stem.with_suffix(".png"), FIGURE_DPI)
     print(text)

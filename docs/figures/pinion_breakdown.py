@@ -43,9 +43,8 @@ SCALARS = {   # name -> (units, long_name)
 }
 
 
-def run(overrides=()):
+def run(study, overrides=()):
     """Dataset (bearing, solver[, component]) of the six runs."""
-    study = compose(list(overrides)).study
     rows = {}
     for role in ROLES:
         for variant in VARIANTS:
@@ -125,4 +124,6 @@ def figure(ds):
 
 
 if __name__ == "__main__":
-    write_results(OUT, run(sys.argv[1:]), table, figure)
+    overrides = sys.argv[1:]
+    study = compose(list(overrides)).study
+    write_results(OUT, run(study, overrides), table, figure, study)

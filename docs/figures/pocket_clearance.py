@@ -43,9 +43,8 @@ QUANTITIES = {"torque": ("N*mm", "frictional torque on the outer ring"),
               "wall_time": ("s", "wall time of the run")}
 
 
-def run(overrides=()):
+def run(study, overrides=()):
     """Dataset (bearing, solver, pocket_clearance) of the sweep."""
-    study = compose(list(overrides)).study
     shape = (len(ROLES), len(SOLVERS), len(CLEARANCES))
     values = {k: np.full(shape, np.nan) for k in QUANTITIES}
     converged = np.zeros(shape, dtype=bool)
@@ -109,4 +108,6 @@ def figure(ds):
 
 
 if __name__ == "__main__":
-    write_results(OUT, run(sys.argv[1:]), table, figure)
+    overrides = sys.argv[1:]
+    study = compose(list(overrides)).study
+    write_results(OUT, run(study, overrides), table, figure, study)

@@ -46,3 +46,40 @@ def test_report_gives_the_dynamic_torque_and_skew_of_the_best_design(tmp_path):
     assert float(cells[7]) == pytest.approx(float(np.abs(last.roller_skew_t.mean("time")).max()), abs=5e-5)
     assert cells[9] == str(bool(dyn.converged))
     assert "best_design_dynamic" in text
+
+
+def test_figure_tables_are_written_in_the_results_contract(tmp_path):
+    """A docs/figures table (dims bearing x solver x component, as pinion_breakdown.py builds it)
+    written by studies.verify.write_results follows DATA.md (check_result.py, when ../shared is
+    there): bearing -> design with bearing_type, a case of one at the study's load, the largest
+    roller skew and tilt renamed apart from the per-roller DATA.md variables, provenance attributes;
+    the values are the table's."""
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    from matplotlib.figure import Figure
+
+    from studies.verify import write_results
+
+    study = compose([]).study
+    comps = ["rolling", "hysteresis", "sliding", "drilling", "rib", "cage", "drag"]
+    torque = np.array([[5000.0, 5200.0], [3100.0, 3130.0]])
+    share = np.array([0.3, 0.05, 0.05, 0.4, 0.15, 0.05, 0.0])      # of the torque, summing to 1
+    ds = xr.Dataset({"torque": (("bearing", "solver"), torque, {"units": "N*mm", "long_name": "frictional torque"}),
+                     "tilt": (("bearing", "solver"), np.full((2, 2), 0.02), {"units": "deg",
+                                                                             "long_name": "largest |roller tilt|"}),
+                     "torque_component": (("bearing", "solver", "component"), torque[:, :, None] * share,
+                                          {"units": "N*mm", "long_name": "torque breakdown"})},
+                    coords={"bearing": ["tsrb_pinion", "trb_31313"], "solver": ["quasi_static", "dynamic"],
+                            "component": comps})
+    write_results(tmp_path / "table", ds, lambda d: "table", lambda d: Figure(), study)
+    out = xr.load_dataset(tmp_path / "table.nc")
+    assert out.torque.dims == ("design", "case", "solver") and "roller_tilt_max" in out.data_vars
+    assert out.tilt.dims == ("case",) and out.tilt.values.tolist() == [float(study.load.tilt)]   # DATA.md's case tilt
+    assert list(out.bearing_type.values) == ["TSRB", "TRB"] and out.Fa.values.tolist() == [float(study.load.Fa)]
+    np.testing.assert_array_equal(out.torque.isel(case=0).values, torque)
+    checker = Path(__file__).resolve().parents[2].parent / "shared" / "tools" / "check_result.py"
+    if checker.exists():
+        chk = subprocess.run([sys.executable, str(checker), str(tmp_path / "table.nc")], capture_output=True, text=True)
+        assert chk.returncode == 0, chk.stdout
