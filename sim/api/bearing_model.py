@@ -236,7 +236,7 @@ class BearingModel:
             rib_contact (Z, 4) (rib contact point (r, z) [mm] on the roller end and unit rib
             normal (r, z) into the rib in the roller's meridian plane; the rib load acts on the
             roller along -normal; zeros for the TSRB), roller_loads (Z, 3) as applied, free (Z, 2, N)
-            free penetrations of the slices [mm] (:func:`sim.physics.elasticity.free_penetrations`), frames
+            free penetrations of the slices [mm] (:func:`sim.physics.elasticity.coupled_slice_loads`), frames
             (:data:`sim.physics.roller_contact.ContactFrames` of the Z rollers at the returned
             poses when converged: slice contact points and normals, roller centres and axes,
             roller-end / rib points), and solver_info (roller iterations, contact evaluations,

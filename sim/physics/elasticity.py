@@ -163,7 +163,7 @@ def independent_slice_loads(d, k_line, q, dq):
 
 
 @kernel
-def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
+def coupled_slice_loads(d, C, w, R, E_star, q, active, tol, free):
     """Line loads of elastically coupled slices (complementarity problem).
 
     Finds q >= 0 with, for every loaded slice, sum_i C_ki q_i + u_self(q_k) = d_k, and for
@@ -188,6 +188,11 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
         Loaded slices: warm start in, solution out.
     tol : float
         Deflection tolerance [mm].
+    free : ndarray (N,)
+        Written: the free penetrations d_k - sum_{i != k} C_ki q_i of the solution [mm] (loaded
+        slices: their own deflection u_self(q_k) > 0; unloaded ones: minus the gap the neighbours
+        open, <= 0 up to ``tol``), from the sums the solve forms anyway; :func:`loaded_lengths`
+        places the contact ends by them.
 
     Returns
     -------
@@ -208,6 +213,7 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
         for k in range(n):
             q[k] = 0.0
             active[k] = False
+            free[k] = d[k]
         return True, 0
     if nact == 0:  # cold start: every penetrating slice, loads from its own deflection only
         for k in range(n):
@@ -238,6 +244,7 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
                 u, du = self_deflection(q[k], w, R[k], E_star)
                 J[a, a] = du
                 F[a] = s + u - d[k]
+                free[k] = d[k] - s
                 if abs(F[a]) > fmax:
                     fmax = abs(F[a])
             if fmax <= tol or m == 0:
@@ -262,6 +269,7 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
                 for bb in range(n):
                     if active[bb]:
                         s += C[k, bb] * q[bb]
+                free[k] = d[k] - s
                 if d[k] - s > tol:
                     active[k] = True
                     q[k] = _load_from_self_deflection(d[k] - s, w, R[k], E_star)
@@ -272,35 +280,13 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol):
 
 
 @kernel
-def free_penetrations(d, C, q, out):
-    """Penetration left to each slice after the deflection the other slices' loads cause [mm].
-
-    out_k = d_k - sum_{i != k} C_ki q_i (``C`` zero for independent slices: out = d). On a loaded
-    slice of the coupled model it is the slice's own deflection u_self(q_k) > 0 (the
-    complementarity condition of :func:`coupled_slice_loads`), on an unloaded slice minus the gap
-    that the neighbours' deflection opens (<= 0, up to the solve's tolerance). Both tend to 0
-    where a slice enters or leaves contact, so the field is continuous in the roller's pose:
-    :func:`loaded_lengths` places the contact ends by its zero crossings.
-
-    d (N,): rigid penetrations [mm]; C (N, N): off-diagonal influence numbers [mm per N/mm];
-    q (N,): line loads [N/mm]; out (N,): written.
-    """
-    n = d.shape[0]
-    for k in range(n):
-        s = 0.0
-        for i in range(n):
-            if q[i] > 0.0:
-                s += C[k, i] * q[i]
-        out[k] = d[k] - s
-
-
-@kernel
 def loaded_lengths(free, loaded, w, out):
     """Loaded length of each slice strip [mm]: the contact ends placed between slice centres.
 
     The strip of slice k is [x_k - w/2, x_k + w/2] (centres w apart, the end strips reach the
     roller ends). The contact is where the piecewise-linear interpolant of the signed field
-    f_k = free_k on loaded slices (> 0), min(free_k, 0) on unloaded ones (:func:`free_penetrations`)
+    f_k = free_k on loaded slices (> 0), min(free_k, 0) on unloaded ones (the free penetrations of
+    :func:`coupled_slice_loads`, the rigid penetrations of independent slices)
     between the slice centres is positive, extended as a constant from the end centres to the
     roller ends; ``out[k]`` is its length inside strip k. A strip counts fully when it and its
     neighbours are loaded, and a contact end between a loaded slice k and an unloaded k + 1 lies

@@ -197,7 +197,7 @@ ContactLoads = namedtuple("ContactLoads", [
     "x_end",        # roller-end sphere centre along u' from the roller centre [mm] (TRB; ``rib[0]``)
     "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
-    "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.free_penetrations)
+    "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.coupled_slice_loads)
 ])
 
 # Film, load share, rolling resistance, Hertz data and film viscosity of every contact, written by
@@ -443,7 +443,8 @@ def lubrication_state(wR, wc, wi, active, case):
                     phi_R = 1.0
                     if par.inlet_heating and u > 0.0:
                         phi_R = film_thermal_factor_gupta(hertz_line_pressure(q_mean, R, E_star), Ep,
-                                                          thermal_loading(par.eta0, par.beta, u, par.k_oil), (v1 - v2) / u)
+                                                          thermal_loading(par.eta0, par.beta, u, par.k_oil),
+                                                          (v1 - v2) / u)
                     # the film retards both surfaces by F each (Reynolds: dissipation 2 u F, couple
                     # 2 F R, sim.physics.ehl.rolling_moment_hydrodynamic): Fh is the sum of both
                     Fh[j, s, k] = phi_R * rolling_moment_hydrodynamic(u, q_mean, R, lengths[k], par.eta0, par.alpha,

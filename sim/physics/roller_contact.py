@@ -35,8 +35,7 @@ from sim._math.linalg import solve_dense
 from sim.geometry import RACE_LENS
 from sim.physics.contact import (NO_CONTACT, hertz_point_load, lens_penetration, roller_axes, slice_contact_meridian,
                                  to_ring)
-from sim.physics.elasticity import (INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, free_penetrations,
-                                    independent_slice_loads)
+from sim.physics.elasticity import INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, independent_slice_loads
 
 NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'), theta, delta_a, delta_r
 
@@ -70,7 +69,8 @@ ContactFrames = namedtuple("ContactFrames", ["X", "Nrm", "Cen", "Ax", "Xrib"])
 # rib_contact (4,): rib contact point (r, z) [mm] on the roller end and the rib's unit normal
 # (r, z) into the rib (the rib load acts on the roller along -n; zeros without a rib);
 # frames: ContactFrames of this roller; free (2, N): free penetration of every slice [mm]
-# (sim.physics.elasticity.free_penetrations: the contact ends between slices, loaded_lengths).
+# (sim.physics.elasticity.coupled_slice_loads; the rigid ones for independent slices): the contact ends
+# between slices (loaded_lengths).
 RollerContact = namedtuple("RollerContact", ["pose", "q", "active", "f", "K", "Q", "depth", "G", "d",
                                              "rib_contact", "frames", "free"])
 
@@ -233,9 +233,8 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
             # deflection tolerance: DEFLECTION_TOL_ABS, and at most DEFLECTION_TOL_REL of the deepest
             # penetration, so that lightly loaded rollers get the same relative accuracy
             conv, its = coupled_slice_loads(d, elasticity.C, w, bearing.R_eq[s], elasticity.E_star, qs, act,
-                                            min(DEFLECTION_TOL_ABS, DEFLECTION_TOL_REL * max(dmax, 0.0)))
+                                            min(DEFLECTION_TOL_ABS, DEFLECTION_TOL_REL * max(dmax, 0.0)), state.free[s])
             ok = ok and conv
-            free_penetrations(d, elasticity.C, qs, state.free[s])
             m = 0
             for k in range(n):
                 if act[k]:

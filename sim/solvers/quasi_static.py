@@ -93,7 +93,7 @@ QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", 
 # loads [N]; rib_contact (Z, 4): rib contact point (r, z) [mm] on the roller end and unit rib
 # normal (r, z) into the rib, in the roller's meridian plane (zeros without a rib or for a roller
 # not in equilibrium); frames: sim.physics.roller_contact.ContactFrames of the Z rollers; free
-# (Z, 2, N): free penetrations of the slices [mm] (sim.physics.elasticity.free_penetrations).
+# (Z, 2, N): free penetrations of the slices [mm] (sim.physics.elasticity.coupled_slice_loads).
 RollerSet = namedtuple("RollerSet", ["poses", "q", "active", "Q", "Q_rib", "rib_contact", "frames", "free"])
 
 # What solve_bearing reports: converged; iterations (ring Newton iterations; axisymmetric case:
@@ -756,8 +756,8 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                     q[j].fill(0.0)
                     active[j].fill(False)
             state = RollerContact(poses[j], q[j], active[j], f, K, Qc, depth, G, dpen, ribc,
-                                  ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j], frames.Xrib[j]),
-                                  free[j])
+                                  ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j],
+                                                frames.Xrib[j]), free[j])
             st, its, nev = solve_roller(ring, phi, cpsi, ext[j], problem, roller_tol, control, state, work)
             roller_its += its
             roller_evals += nev
