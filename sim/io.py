@@ -57,6 +57,11 @@ CASE_VARIABLES = {
     "iterations": ((), "1", "ring Newton iterations"),
     "wall_time": ((), "s", "solver wall time of the case"),
 }
+# kernel units (mm, N, s, rad) -> output units (DATA.md): power 1 N mm/s = 1e-3 W, speed
+# 1 rad/s = 60 / (2 pi) rpm, film thickness 1 mm = 1e3 um
+W_PER_N_MM_PER_S = 1e-3
+RPM_PER_RAD_S = 30.0 / np.pi
+UM_PER_MM = 1e3
 # written only when some case computed them (friction enabled)
 OPTIONAL_VARIABLES = {"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio",
                       "roller_skew", "skew_sliding"}

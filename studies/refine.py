@@ -117,7 +117,7 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
         before = rank_key(*best()[1:])
         res = minimize(objective, start, method="COBYLA", bounds=[(0.0, 1.0)] * d,
                        constraints=[{"type": "ineq", "fun": constraints}],
-                       options={"rhobeg": step, "tol": min(final_step, step),
+                       options={"rhobeg": step, "tol": final_step,
                                 "maxiter": max(max_evaluations - len(seen) + 1, d + 2)})
         runs += 1
         step *= restart_shrink

@@ -17,13 +17,11 @@ import numpy as np
 from omegaconf import OmegaConf
 
 import sim
-from sim.io import (CASE_COORD_ATTRS, git_commit, model_fingerprint, package_version, utc_now, write_bytes_atomic,
-                    write_figure_atomic, write_netcdf_atomic)
-from studies.config import VARIANTS, simulation_config
+from sim.io import (CASE_COORD_ATTRS, RPM_PER_RAD_S, W_PER_N_MM_PER_S, git_commit, model_fingerprint, package_version,
+                    utc_now, write_bytes_atomic, write_figure_atomic, write_netcdf_atomic)
+from studies.config import VARIANTS, compose, simulation_config
 from studies.evaluate import design_config
 
-W_TO_N_MM_PER_S = 1e3
-RAD_S_PER_RPM = np.pi / 30.0   # 1 rpm = 2 pi / 60 rad/s
 FIGURE_DPI = 150               # 1/inch, the docs figures' resolution (docs/figures/skew_tilt_dynamic.py)
 
 
@@ -46,10 +44,10 @@ def solver_summary(cfg):
     ds = sim.simulate(cfg)
     wall = time.perf_counter() - t0
     c = ds.isel(design=0, case=0)
-    wi = float(cfg.load.speed) * RAD_S_PER_RPM
+    wi = float(cfg.load.speed) / RPM_PER_RAD_S
     out = {
         "torque": float(c.torque) if "torque" in c else np.nan,
-        "loss_torque": float(c.power_loss) * W_TO_N_MM_PER_S / wi if "power_loss" in c else np.nan,
+        "loss_torque": float(c.power_loss) / W_PER_N_MM_PER_S / wi if "power_loss" in c else np.nan,
         "component": {str(k): float(c.torque_component.sel(component=k)) if "torque_component" in c else np.nan
                       for k in c.component.values},
         "skew_sliding": float(c.skew_sliding) if "skew_sliding" in c else np.nan,
@@ -74,7 +72,7 @@ def last_window(c, samples, wi):
     ended."""
     last = c.isel(time=slice(-samples, None))
     return {"torque": float(last.torque_t.mean()),
-            "loss_torque": float(last.power_loss_t.mean()) * W_TO_N_MM_PER_S / wi,
+            "loss_torque": float(last.power_loss_t.mean()) / W_PER_N_MM_PER_S / wi,
             "drive_torque": float(last.drive_torque_t.mean()),
             "skew": float(np.abs(last.roller_skew_t.mean("time")).max()),
             "tilt": float(np.abs(last.roller_tilt_t.mean("time")).max())}
@@ -102,6 +100,14 @@ def contract_layout(ds, study):
                       "model_fingerprint": model_fingerprint(), "config": OmegaConf.to_yaml(study),
                       "created": utc_now()})
     return out
+
+
+def run_script(stem, run, table, figure, argv):
+    """A docs/figures script of issue 18: compose the study of the overrides ``argv`` (study keys
+    and simulation overrides, as ``python -m studies.optimize``), ``run(study, argv)`` -> its table
+    Dataset, then :func:`write_results` beside ``stem``."""
+    study = compose(list(argv)).study
+    write_results(stem, run(study, argv), table, figure, study)
 
 
 def write_results(stem, ds, table, figure, study):

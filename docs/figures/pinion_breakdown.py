@@ -24,8 +24,7 @@ REPO = pathlib.Path(__file__).resolve().parents[2]
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))  # run from a checkout: this sim/, not an installed one
 
-from studies.config import compose  # noqa: E402
-from studies.verify import VARIANTS, solver_summary, variant_config, write_results  # noqa: E402
+from studies.verify import VARIANTS, solver_summary, variant_config, run_script  # noqa: E402
 
 OUT = pathlib.Path(__file__).with_suffix("")
 # thesis 7.4 (Fig. 7.28 discussion): the optimised TSRB's torque is 367 % above the TRB 31313's
@@ -124,6 +123,4 @@ def figure(ds):
 
 
 if __name__ == "__main__":
-    overrides = sys.argv[1:]
-    study = compose(list(overrides)).study
-    write_results(OUT, run(study, overrides), table, figure, study)
+    run_script(OUT, run, table, figure, sys.argv[1:])

@@ -25,8 +25,7 @@ REPO = pathlib.Path(__file__).resolve().parents[2]
 if str(REPO) not in sys.path:
     sys.path.insert(0, str(REPO))  # run from a checkout: this sim/, not an installed one
 
-from studies.config import compose  # noqa: E402
-from studies.verify import solver_summary, variant_config, write_results  # noqa: E402
+from studies.verify import solver_summary, variant_config, run_script  # noqa: E402
 
 OUT = pathlib.Path(__file__).with_suffix("")
 # mm: both ends and two inner points of the ASSUMED range 0.05-0.5 mm of friction.skew.pocket_clearance
@@ -108,6 +107,4 @@ def figure(ds):
 
 
 if __name__ == "__main__":
-    overrides = sys.argv[1:]
-    study = compose(list(overrides)).study
-    write_results(OUT, run(study, overrides), table, figure, study)
+    run_script(OUT, run, table, figure, sys.argv[1:])

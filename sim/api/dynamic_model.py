@@ -14,6 +14,7 @@ import numpy as np
 
 from sim.api.bearing_model import case_results
 from sim.api.friction_model import film_outputs
+from sim.io import RPM_PER_RAD_S, W_PER_N_MM_PER_S
 from sim.physics.friction import lubrication_state
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.dynamic import (ETA, HR, NCAGE, NRING, NS, PHI, PSI,
@@ -24,8 +25,6 @@ from sim.solvers.dynamic import (ETA, HR, NCAGE, NRING, NS, PHI, PSI,
 
 KG_TO_T = 1e-3              # mass: 1 kg = 1e-3 t (kernel units t, mm, s, N)
 KG_M2_TO_T_MM2 = 1e3        # inertia: 1 kg m^2 = 1e-3 t x 1e6 mm^2
-W_PER_N_MM_PER_S = 1e-3
-RPM_PER_RAD_S = 30.0 / np.pi
 
 # A dynamic case ready to run: the problem (sim.solvers.dynamic), its settings, the start state
 # y0, the quasi-static result of the case (FrictionModel.evaluate outputs in output units and the

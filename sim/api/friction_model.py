@@ -7,6 +7,7 @@ from collections import namedtuple
 
 import numpy as np
 
+from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
 from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, NC, NEV, ContactLoads, FilmState,
                                   FrictionCase, FrictionParams, width_quadrature)
@@ -17,11 +18,9 @@ from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_fri
 # unit conversions of the config (SI, um) to kernel units (mm, N, s, MPa) and of results to output units
 MM_PER_M = 1e3
 MM_PER_UM = 1e-3
-UM_PER_MM = 1e3
 MM2_PER_M2 = 1e6
 MPA_S_PER_PA_S = 1e-6
 T_PER_MM3_PER_KG_PER_M3 = 1e-12     # density: 1 kg/m^3 = 1e-12 t/mm^3
-W_PER_N_MM_PER_S = 1e-3
 
 # Speed 0 (``load.speed = 0``): the zero-speed breakaway (starting) torque, the speed -> 0 limit of
 # the model without a film. No entrainment, hence no EHL film and no EHL rolling loss; no rolling,
@@ -231,7 +230,7 @@ class FrictionModel:
             "srr": srr,
             "film_thickness": film_um,
             "lambda_ratio": lam,
-            "cage_speed": wc * 30.0 / np.pi,                         # rad/s -> rpm
+            "cage_speed": wc * RPM_PER_RAD_S,
             "roller_loads": roller_loads,
             "kinematics": (wc, wR.copy(), psi.copy(), pb.jac),
         } | ({"roller_skew": np.degrees(psi), "skew_sliding": float(skew_sliding)} if par.skew else {})

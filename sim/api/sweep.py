@@ -554,7 +554,8 @@ def run_job(cfg, out_dir, job, overrides):
         message = f"{type(exc).__name__}: {exc}"
         (log.warning if isinstance(exc, ValueError) else log.exception)("%s failed: %s", head, message)
         try:
-            io.write_bytes_atomic(failed, json.dumps({"job": job, "overrides": list(overrides), "error": message}).encode())
+            marker = {"job": job, "overrides": list(overrides), "error": message}
+            io.write_bytes_atomic(failed, json.dumps(marker).encode())
         except OSError as err:
             log.error("%s: %s cannot be written either (%s): the collector will report the job as missing",
                       head, failed, err)

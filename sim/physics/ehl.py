@@ -130,8 +130,9 @@ def rolling_force_hydrodynamic(u, q, R, width, eta0, alpha_p, E_prime):
     F = l (4.318/alpha_p) (G U)^0.658 W^0.0126 R (Goksem & Hargreaves, ASME J. Lubr. Technol. 100
     (1978) 346-358, isothermal EHL line contact, as quoted in reference/friction_literature.md)
     with U = eta0 u/(E' R), W = q/(E' R), G = alpha_p E' and l the strip length (the loaded
-    length of a slice strip, :func:`sim.physics.elasticity.loaded_lengths`) [mm]; u entrainment (mean) speed [mm/s], q [N/mm], alpha_p [1/MPa], R, E' as in
-    :func:`film_line`; F [N] = [MPa mm] [mm].
+    length of a slice strip, :func:`sim.physics.elasticity.loaded_lengths`) [mm]; u entrainment
+    (mean) speed [mm/s], q [N/mm], alpha_p [1/MPa], R, E' as in :func:`film_line`;
+    F [N] = [MPa mm] [mm].
 
     Why this form: in the elastohydrodynamic regime the force comes from the inlet, whose
     geometry the load hardly changes, so F per unit length is almost independent of the load.
