@@ -360,11 +360,10 @@ class SolverConfig:
 
 @dataclass
 class OutputConfig:
-    """What is written, where results are cached (:mod:`sim.api.sweep`), how edge stress is judged."""
+    """What is written, where results are cached (:mod:`sim.api.sweep`), when a slice counts as loaded."""
 
     file: str = key(Text())
     cache_dir: Any = key(Text(), optional=True)
-    edge_stress_ratio: Any = key(Number(0.0, low_open=True))
     contact_pressure_threshold: Any = key(Number(0.0, low_open=True, units="MPa"))
 
 

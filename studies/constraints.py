@@ -16,7 +16,7 @@ L10                    1 - L10 / L10_min, L10 over the duty cycle (studies.cycle
                        (C_eff / P_eq)^p of eq. (2.15) with C_eff (7.1), P (2.12) at the design's
                        rating angle); one case: (C_eff / P)^p
 edge_stress            max over the cases of the edge-stress margin
-                       (studies.evaluate.edge_stress_margin); only when
+                       (sim.physics.elasticity.edge_interference); only when
                        ``constraints.edge_stress`` is true (thesis 7.3, step 12)
 PCR_over_Lwe           PCR / (ratio_max Lwe) - 1 (issue 5), exact
 =====================  ============================================================

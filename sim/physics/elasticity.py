@@ -326,6 +326,44 @@ def loaded_lengths(free, loaded, w, out):
 
 
 @kernel
+def edge_interference(free, loaded):
+    """Interference of one contact at the roller ends, relative to its largest elastic approach [1].
+
+    The signed field of :func:`loaded_lengths` (g_k = free_k on loaded slices, min(free_k, 0) on
+    unloaded ones: a slice's own deflection inside the contact, minus the gap its neighbours open
+    outside) is extrapolated linearly from the two end centres to each roller end, half a slice
+    beyond the end centre: g_end = 1.5 g_0 - 0.5 g_1 (second order, like the contact ends between
+    slice centres). g_end > 0 means the contact runs onto the roller end: the elastic half-space
+    solution of a contact truncated by a sharp edge has a pressure singularity there (like the rigid
+    flat punch, p = P / (pi sqrt(a^2 - x^2)): Johnson 1985, Contact Mechanics, chapter 2), so the end slice's pressure
+    is then a slice average of a peak that grows without bound as the slices are refined (thesis
+    7.2.1: the "stress concentration in the roller edge"). The extrapolation is capped by g_0 so
+    that an unloaded end slice (g_0 <= 0) never counts as edge contact, and is divided by the
+    largest g of the contact (its largest own deflection), which makes it dimensionless and
+    continuous in the pose as slices enter or leave the contact.
+
+    free (N,): free penetrations [mm] (:func:`coupled_slice_loads`); loaded (N,) bool.
+    Returns max over both ends of min(g_end, g_0) / max(g) [1]; -inf for a contact without load
+    (no interference anywhere).
+    """
+    n = free.shape[0]
+    gmax = 0.0
+    for k in range(n):
+        if loaded[k] and free[k] > gmax:
+            gmax = free[k]
+    if gmax <= 0.0:
+        return -np.inf
+    worst = -np.inf
+    for end in range(2):
+        k0 = 0 if end == 0 else n - 1
+        k1 = min(1, n - 1) if end == 0 else max(n - 2, 0)
+        g0 = free[k0] if loaded[k0] else min(free[k0], 0.0)
+        g1 = free[k1] if loaded[k1] else min(free[k1], 0.0)
+        worst = max(worst, min(1.5 * g0 - 0.5 * g1, g0) / gmax)
+    return worst
+
+
+@kernel
 def _load_from_self_deflection(u, w, R, E_star):
     """Line load [N/mm] whose self deflection is u [mm] (fixed point on the slowly varying log)."""
     q = u * np.pi * E_star / (2.0 * WIDE_STRIP_LOG_START)

@@ -1,5 +1,5 @@
 """Constraint margins (studies/constraints.py), edge-stress margin and design space (studies/evaluate.py,
-studies/space.py): exact values on constructed inputs."""
+studies/space.py): exact values on constructed inputs; the edge margin of simulated designs."""
 from dataclasses import replace
 
 import numpy as np
@@ -8,12 +8,11 @@ from omegaconf import OmegaConf
 
 from sim import CONF_DIR
 from sim.physics import ratings
-from studies.config import compose
+from studies.config import compose, simulation_config
 from studies.constraints import FAILED, Limits, margins, rank_key, violation
-from studies.evaluate import edge_stress_margin
+from studies.evaluate import EDGE_MARGIN, design_config, simulate_point
 from studies.space import DesignSpace
 
-OUTPUT = {"contact_pressure_threshold": 1.0, "edge_stress_ratio": 1.0}  # conf/output/default.yaml values
 LIMITS = Limits(axial_displacement_max=0.047, pmax_max=1300.0, L10_min=150.0, edge_stress=True,
                 PCR_over_Lwe_max=10.0, Lwe=24.2, Fa=35000.0, Fr=0.0)
 BEARING = {"PCR": 121.0, "ratings_alpha": 24.5}
@@ -58,19 +57,16 @@ def test_edge_stress_switch_and_rank_order():
     assert rank_key(800.0, [-1.0, -0.1]) == (0, 800.0)
 
 
-@pytest.mark.parametrize("pressure, flagged", [
-    ([[500, 900, 1000, 900, 400]], False),          # crowned: ends below the interior
-    ([[1200, 900, 1000, 900, 400]], True),          # end peak above the interior maximum
-    ([[0.5, 0.0, 0.0, 0.0, 0.0]], False),           # end below the loaded-slice threshold
-    ([[300, 0.0, 0.0, 0.0, 0.0]], True),            # only the end slice loaded
-    ([[500, 900, 1000, 900, 400], [1001, 0, 1000, 0, 0]], True),  # one race suffices
-])
-def test_edge_stress_margin_has_the_sign_of_the_simulation_flag(pressure, flagged):
-    """sim.api.bearing_model.case_results flags (p_end > threshold) & (p_end > ratio p_interior); the margin is > 0
-    exactly then, and stays within [-ratio, 1]."""
-    m = edge_stress_margin(np.array(pressure, dtype=float), OUTPUT)
-    assert (m > 0.0) == flagged
-    assert -1.0 <= m <= 1.0
+@pytest.mark.parametrize("PCR, flagged", [(51.0, True), (25.0, False)])
+def test_edge_stress_margin_has_the_sign_of_the_simulation_flag(PCR, flagged):
+    """The study's edge margin is the simulation's edge_interference (max over the races) and is
+    > 0 exactly when the simulation flags edge stress: the pinion template at its study load with
+    a flatter crown (the contact runs onto the large end) and a more crowned one (it ends inside)."""
+    study = compose([]).study
+    ds, record = simulate_point(design_config(simulation_config(study, study.bearing), {"PCR": PCR}), ("pmax",))
+    margin = record["values"][EDGE_MARGIN]
+    assert margin == pytest.approx(float(ds.edge_interference.max()), rel=0, abs=0)
+    assert (margin > 0.0) == bool(ds.edge_stress) == flagged
 
 
 @pytest.fixture(scope="module")
