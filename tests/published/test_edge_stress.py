@@ -1,0 +1,66 @@
+"""Edge stress: a contact that runs onto a roller end (sim.physics.elasticity.edge_interference).
+
+Thesis 7.2.1 (Figs. 7.8, 7.9): the reference TSRB's maximum pressure "is already affected by a
+stress concentration of the roller edge" (Fig. 7.9 b), more so with a flatter roller (PCR 122.5,
+Fig. 7.9 c), while the more crowned PCR 36 (aA = 0) lowers the maximum pressure. A sharp roller
+end under load concentrates the pressure without bound (the rigid flat punch's inverse square
+root, Johnson 1985, Contact Mechanics, chapter 2), so a slice model's end-slice pressure grows as
+its slices narrow; the verdict "edge contact or not" must not.
+"""
+import pytest
+
+import sim
+
+SLICES = (20, 40, 80)
+
+
+def run(*overrides):
+    return sim.simulate(sim.load_config(["friction.enabled=false", *overrides])).isel(design=0, case=0)
+
+
+@pytest.mark.parametrize("n", SLICES)
+def test_thesis_7_2_1_edge_contact_of_the_reference_and_its_crown_variants(n):
+    """tsrb_reference at Fa 4 kN, Fr 0 (scenario 1 of Fig. 7.6): edge contact for the reference and
+    the flatter PCR 122.5 (more interference, as Fig. 7.9 c against b), none for PCR 36, at every
+    slice count."""
+    def edge(*extra):
+        case = run("bearing=tsrb_reference", "load.Fa=4000", "load.Fr=0", f"solver.n_slices={n}", *extra)
+        assert bool(case.edge_stress) == bool(case.edge_interference.max() > 0.0)
+        return float(case.edge_interference.max())
+
+    reference, flatter, crowned = edge(), edge("bearing.PCR=122.5"), edge("bearing.PCR=36")
+    assert 0.0 < reference < flatter
+    assert crowned < 0.0
+
+
+def test_pmax_of_an_edge_contact_grows_with_the_slices_that_of_an_inner_contact_converges():
+    """Why the verdict is not taken from the end-slice pressure: kappa 0.99 under combined load
+    (Fa = Fr = 4 kN) runs onto the large end and its pmax, the end slice's, keeps rising from 20
+    to 40 to 80 slices (by more than 10 % in all: the end slice averages a peak ~ 1/sqrt(distance),
+    which grows like w^-1/2 as the slice width w shrinks); the crowned PCR 36 contact ends inside
+    the roller and its pmax changes by less than 1 % from 40 to 80 slices
+    (test_slices.test_results_converge_with_slices: the same 1 % on other bearings)."""
+    def pmax(n, *extra):
+        case = run("bearing=tsrb_reference", *extra, f"solver.n_slices={n}")
+        return float(case.pmax.sel(race="outer")), bool(case.edge_stress)
+
+    edge = [pmax(n, "bearing.kappa=0.99", "load.Fa=4000", "load.Fr=4000") for n in SLICES]
+    assert all(flag for _, flag in edge)
+    assert edge[0][0] < edge[1][0] < edge[2][0] and edge[2][0] > 1.10 * edge[0][0]
+    inner = [pmax(n, "bearing.PCR=36", "load.Fa=4000", "load.Fr=0") for n in SLICES[1:]]
+    assert not any(flag for _, flag in inner)
+    assert inner[1][0] == pytest.approx(inner[0][0], rel=0.01)
+
+
+@pytest.mark.parametrize("Fa, n", [(20000.0, 20), (20000.0, 40), (20000.0, 80), (40000.0, 40), (40000.0, 80)])
+def test_logarithmic_profile_keeps_the_contact_off_the_roller_ends(Fa, n):
+    """TRB 32208 with its DIN 26281 logarithmic profile (eq. 2.5: the crown drop grows without bound
+    towards the ends) up to 40 kN, the top of the thesis's load range (Fig. 7.21): no edge contact.
+    At 40 kN the contact ends 0.1-0.3 mm from the roller ends (80 slices of 0.2 mm: the end slice
+    unloaded, the next one loaded); 20 slices of 0.8 mm cannot place an end that close to the roller
+    end (its extrapolation from the end centres, 0.4 mm in, says edge contact), so 40 kN starts at
+    40 slices. The verdict needs slices narrower than the distance from the contact end to the
+    roller end, like any end position of a slice model."""
+    case = run("bearing=trb_32208", f"load.Fa={Fa}", "load.Fr=0", f"solver.n_slices={n}")
+    assert not bool(case.edge_stress)
+    assert float(case.edge_interference.max()) < 0.0
