@@ -64,3 +64,26 @@ def test_logarithmic_profile_keeps_the_contact_off_the_roller_ends(Fa, n):
     case = run("bearing=trb_32208", f"load.Fa={Fa}", "load.Fr=0", f"solver.n_slices={n}")
     assert not bool(case.edge_stress)
     assert float(case.edge_interference.max()) < 0.0
+
+
+EDGE_DIRECTIONS = {   # thesis 7.2.1 and 7.2.4: pmax changes the thesis puts down to the roller-edge stress
+    "PCR=122.5": +1,  # 7.2.1: "pressure peaks ... from the stress concentration in the edge area" (Fig. 7.8 *)
+    "PCR=36": -1,     # 7.2.1: aA = 0 "turns into a reduction of the maximum pressure"
+    "aPk=5.5": +1,    # 7.2.4: up aPk, "maximum pressure increased due to the stress concentration on the roller edge"
+    "aPk=3": -1,      # 7.2.4: down aPk, "maximum pressure due to the stress concentration on the roller edge decreased"
+}
+
+
+@pytest.mark.parametrize("Fr", [0.0, 4000.0])
+@pytest.mark.parametrize("change", list(EDGE_DIRECTIONS))
+def test_thesis_edge_stress_directions_of_7_2(change, Fr):
+    """Each change of Table 7.2 that the thesis explains by the stress concentration on the roller
+    edge moves this model's edge interference the same way, from tsrb_reference at Fa = 4 kN, pure
+    axial and with Fr = 4 kN (scenarios 1 and 4 of Fig. 7.6). With aPk from the small end
+    (docs/aPk_convention.md), 'up aPk' moves the contacts towards the large end, onto its edge."""
+    def interference(*extra):
+        case = run("bearing=tsrb_reference", "load.Fa=4000", f"load.Fr={Fr}", *extra)
+        return float(case.edge_interference.max())
+
+    moved = interference(f"bearing.{change}") - interference()
+    assert moved * EDGE_DIRECTIONS[change] > 0.0
