@@ -57,7 +57,9 @@ def summary(ds):
             f"  contact length ratio  {float(case.contact_length_ratio.sel(race='outer')):8.2f} / "
             f"{float(case.contact_length_ratio.sel(race='inner')):.2f} (outer/inner)\n"
             f"  L_eff, C_eff, L10     {float(case.L_eff):8.2f} mm, {float(case.C_eff) / 1e3:.1f} kN, {float(case.L10):.3g} 1e6 rev\n"
-            f"  edge stress           {bool(case.edge_stress)}\n"
+            f"  edge stress           {bool(case.edge_stress)} (edge interference "
+            f"{float(case.edge_interference.sel(race='outer')):.2f} / {float(case.edge_interference.sel(race='inner')):.2f}, "
+            f"> 0: a contact runs onto a roller end)\n"
             + (friction_summary(case) if "torque" in case else "")
             + f"  converged             True in {int(case.iterations)} iterations, {float(case.wall_time) * 1e3:.1f} ms")
     return "\n".join(lines)
