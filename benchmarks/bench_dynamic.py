@@ -1,20 +1,34 @@
-"""Wall-clock cost of the time-domain solver (sim.solvers.dynamic) on one thread (issue 18 item 5).
+"""Cost of the time-domain solver (sim.solvers.dynamic) on one thread (issue 18 item 5).
 
 Cases: the TRB 32208 rig case (Fa 4500 N, Fr 0, 2000 rpm) and the pinion TSRB (conf bearing
 tsrb_pinion, lubricant pinion_oil, Fa 35 kN, Fr 0, 1100 rpm, oil 50 degC as conf/study/pinion.yaml).
-For each it reports the median of ``--repeats`` right-hand-side evaluations at the start state
-(target < 1 ms), and the wall time of ``--revolutions`` inner-ring revolutions from rolling
-kinematics (the steady-state detector switched off so that every revolution runs; target 60 s
-for 10, goal 20 s) with the steps' work: right-hand sides and Jacobians. The start (the
-quasi-static solution and the numba compile or cache load) is timed apart.
+For each it reports the median CPU time of ``--repeats`` right-hand-side evaluations at the start
+state (target < 1 ms), and of ``--runs`` runs of ``--revolutions`` inner-ring revolutions from
+rolling kinematics (the steady-state detector switched off so that every revolution runs; target
+60 s for 10, goal 20 s): CPU seconds (time.process_time: the machine is shared, wall time counts
+the other workers too), the wall time beside it, seconds per revolution, and the work: right-hand
+sides, Jacobians (each 19 right-hand sides, sim.solvers.dynamic.jacobian) and LU decompositions.
+The start (the quasi-static solution and the numba compile or cache load) is timed apart.
+``--set`` adds config overrides to both cases (e.g. ``solver.dynamic.method=BDF``).
+
+Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
+- 2026-11-26, 7917ec9 (BDF, energy rows of the Jacobian zero), one run each at load 4.6-5.6: TRB 32208
+  167.7 s CPU (290.6 s wall; 16.8 s/rev, 159038 rhs, 68 Jacobians), rhs 0.574 ms; pinion TSRB 7.0 s CPU
+  (10.3 s wall; 0.70 s/rev, 6681 rhs, 159 Jacobians), rhs 0.487 ms.
+- 2026-11-26, 61a98ad (Radau, full Jacobian rows), median of 3 runs at load 5.9-6.1: TRB 32208 14.8 s CPU
+  (22.4 s wall; 1.48 s/rev, 9861 rhs, 390 Jacobians, 2134 LU), rhs 0.584 ms; pinion TSRB 6.7 s CPU (10.3 s
+  wall; 0.67 s/rev, 5959 rhs, 185 Jacobians, 1204 LU), rhs 0.555 ms. Both within the 20 s goal; torque
+  at the end unchanged to 0.1 mN mm (760.5881 and 4977.3021 N mm with either method). Most of either run
+  is its first one or two revolutions (TRB 32208: 2.1 + 6.8 s, then 0.4-0.5 s per revolution).
 
 Run from the repository root::
 
-    python benchmarks/bench_dynamic.py [--revolutions 10] [--repeats 201]
+    python benchmarks/bench_dynamic.py [--revolutions 10] [--runs 3] [--repeats 201] [--set KEY=VALUE ...]
 """
 import argparse
 import os
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -38,9 +52,10 @@ CASES = {
 }
 RHS_TARGET_MS = 1.0
 RUN_TARGET_S = 60.0
+RUN_GOAL_S = 20.0
 
 
-def bench(overrides, revolutions, repeats):
+def bench(overrides, revolutions, runs, repeats):
     cfg = sim.load_config(["solver=dynamic", "solver.dynamic.start=rolling"] + overrides)
     plain = resolved(cfg)
     t0 = time.perf_counter()
@@ -52,32 +67,41 @@ def bench(overrides, revolutions, repeats):
     probe.f(0.0, dc.y0)
     times = []
     for _ in range(repeats):
-        t = time.perf_counter()
+        t = time.process_time()
         probe.f(0.0, dc.y0)
-        times.append(time.perf_counter() - t)
-    rhs_ms = 1e3 * statistics.median(times)
+        times.append(time.process_time() - t)
     # every window runs: no steady-state stop
     settings = dc.settings._replace(max_windows=revolutions, tol_speed=0.0, tol_torque=0.0, tol_load=0.0, tol_skew=0.0,
                                     window=2.0 * np.pi / dc.problem.body.wi)
-    t = time.perf_counter()
-    integ = dynamic_model.run(dc._replace(settings=settings))
-    wall = time.perf_counter() - t
-    return dict(start_s=t_start, rhs_ms=rhs_ms, wall_s=wall, per_rev_s=wall / revolutions, rhs=integ.rhs_calls,
-                jac=integ.jac_calls, torque=float(integ.tot_t[-1, 0]), qs_torque=dc.quasi_static["torque"])
+    cpu, wall = [], []
+    for _ in range(runs):
+        c, w = time.process_time(), time.perf_counter()
+        integ = dynamic_model.run(dc._replace(settings=settings))
+        cpu.append(time.process_time() - c)
+        wall.append(time.perf_counter() - w)
+    return dict(start_s=t_start, rhs_ms=1e3 * statistics.median(times), cpu_s=statistics.median(cpu),
+                wall_s=statistics.median(wall), rhs=integ.rhs_calls, jac=integ.jac_calls, lu=integ.lu_calls,
+                torque=float(integ.tot_t[-1, 0]), qs_torque=dc.quasi_static["torque"])
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--revolutions", type=int, default=10)
+    ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--repeats", type=int, default=201)
+    ap.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="config overrides for both cases")
     args = ap.parse_args()
-    print(f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores (shared machine: timings are upper bounds)")
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=REPO, capture_output=True,
+                            text=True).stdout.strip()
+    print(f"commit {commit}; load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores "
+          f"(shared machine: CPU time is the measure); overrides {args.set}")
     for name, overrides in CASES.items():
-        r = bench(overrides, args.revolutions, args.repeats)
-        print(f"{name}: start {r['start_s']:.1f} s; rhs median {r['rhs_ms']:.3f} ms (target < {RHS_TARGET_MS} ms); "
-              f"{args.revolutions} revolutions {r['wall_s']:.1f} s (target {RUN_TARGET_S:.0f} s), "
-              f"{r['per_rev_s']:.2f} s/rev, {r['rhs']} rhs, {r['jac']} Jacobians; torque at the end "
-              f"{r['torque']:.1f} N mm (quasi-static {r['qs_torque']:.1f})")
+        r = bench(overrides + args.set, args.revolutions, args.runs, args.repeats)
+        print(f"{name}: start {r['start_s']:.1f} s; rhs median {r['rhs_ms']:.3f} ms CPU (target < {RHS_TARGET_MS} ms); "
+              f"{args.revolutions} revolutions median of {args.runs}: {r['cpu_s']:.1f} s CPU, {r['wall_s']:.1f} s wall "
+              f"(target {RUN_TARGET_S:.0f} s, goal {RUN_GOAL_S:.0f} s), {r['cpu_s'] / args.revolutions:.2f} s/rev; "
+              f"{r['rhs']} rhs, {r['jac']} Jacobians, {r['lu']} LU; torque at the end {r['torque']:.1f} N mm "
+              f"(quasi-static {r['qs_torque']:.1f}); load average {os.getloadavg()[0]:.2f}")
 
 
 if __name__ == "__main__":

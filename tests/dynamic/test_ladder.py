@@ -216,10 +216,12 @@ def test_free_skew_settles_to_the_quasi_static_skew(skew_run):
 def test_the_transient_converges_with_the_integrator_tolerance():
     """Convergence rung (issue 18 item 4): the pinion TSRB (its cheapest case: 35 kN, 1100 rpm,
     pinion oil 50 degC) from rolling kinematics over 0.1 revolution, sampled 20 times, at rtol
-    1e-3 ... 1e-7 against rtol 1e-10. BDF with error-per-step control is tolerance proportional
-    with a global error ~ rtol^(k/(k+1)) at order k = 1 ... 5 (Hairer, Norsett & Wanner 1993,
-    Solving ODEs I, II.4), an observed order 0.5-0.83: the least-squares order of the cage speed's
-    RMS error must lie in [0.5, 1.5] (above 1.5 the reference itself would be in doubt). The
+    1e-3 ... 1e-7 against rtol 1e-10 (the configured method). Error-per-step control with an
+    error estimate of order q makes an integrator of order p tolerance proportional with a
+    global error ~ rtol^(p/(q+1)) (Hairer, Norsett & Wanner 1993, Solving ODEs I, II.4): BDF at
+    order k = 1 ... 5 (q = k) 0.5-0.83; Radau IIA (order 5, stage order 3 under stiffness, q = 3,
+    Hairer & Wanner 1996, IV.8) 0.75-1.25. The least-squares order of the cage speed's RMS error
+    must lie in [0.5, 1.5] (above 1.5 the reference itself would be in doubt). The
     torque, which carries the contacts' vibration, converges less orderly (its error has stalled
     over two decades of rtol, until the steps resolve the contact modes; README); over the four
     decades it must still fall by two at least, the least any order >= 0.5 gives."""
