@@ -557,7 +557,7 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
         Limiting shear stress at zero pressure and its pressure slope, solid friction
         coefficient and its regularising speed, elastic shear modulus of the film.
     t_transit : float
-        Transit time through the contact, contact length / entrainment speed [s] (1e300: no
+        Transit time through the contact, contact length / entrainment speed [s] (inf: no
         elastic part).
 
     Returns
