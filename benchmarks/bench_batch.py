@@ -33,6 +33,16 @@ process 19.0 ms CPU per case, of which (per case, separate timing at the same lo
 150 cases/s on 2 cores needs <= 13.3 ms CPU per case in all, setup and physics: the target
 is bounded by the per-case physics (the setup around it is 2.6 ms, 13 %, of the CPU per case).
 
+Measured (2026-11-26, commit bb35c91 against its base 7917ec9, run one after the other on the
+shared 2-core machine at load average 1.25): physics 10.29 -> 8.52 ms CPU (-17 %), ``simulate``
+11.65 -> 9.92 ms, ratio 1.13 -> 1.16; 2 workers 147.0 -> 170.5 combined cases per second median
+(best 149.3 -> 173.4), CPU of all processes 12.9 -> 11.1 ms per case, i.e. 155.1 -> 180.5 cases/s
+on 2 idle cores: the target of 150 is met; batch equal to ``workers=1``. (The same pair at load
+5.7-6.2: physics 12.15 -> 9.16 ms CPU, CPU per case 14.2 -> 11.9 ms, 140.7 -> 168.0 cases/s by CPU
+time; wall rates there are not the machine's.) The gain is in the friction kernels (subnormal
+Deborah numbers in the thermal film solve; the friction loads of the last residual evaluation
+reused); results bit-identical.
+
 Run from the repository root::
 
     python benchmarks/bench_batch.py [--repeats 5] [--workers N] [--calls 41]

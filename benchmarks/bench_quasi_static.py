@@ -22,6 +22,15 @@ Run from the repository root::
     python benchmarks/bench_quasi_static.py [--slices 20] [--repeats 21] [--no-cache] [--netcdf PATH]
 
 Exit code 0 when every case converged, 1 otherwise.
+
+Measured (2026-11-26, commit bb35c91 against its base 7917ec9, the shared 2-core machine at load
+average 5.7-6.4; CPU medians, which the load hardly moves, wall times it does): with friction,
+combined case, tsrb_reference 11.10 -> 9.02 ms and trb_32208 8.61 -> 7.32 ms (this script, one
+run each); in 5 alternating runs of both commits (41 calls each, ``time.process_time``) 11.81 ->
+9.51 ms and 9.24 -> 7.72 ms (-19 %, -16 %), and at load 1.4 (4 runs) 10.34 -> 8.42 ms and 8.07 ->
+6.54 ms (-19 %, -19 %). Load distribution alone unchanged (1.5 / 2.3 ms).
+Cold compile (first ``solve_case`` with a fresh NUMBA_CACHE_DIR, CPU time, 2 runs each): 50.2,
+51.8 -> 51.6, 51.4 s, about half of it the friction kernels: unchanged.
 """
 import argparse
 import os

@@ -463,7 +463,8 @@ def eyring_maxwell_stress(S, De):
     e = dx + e', so K |dx|^3 <= eps x' with K = cosh/(6 f1) + (f2/f1)^2/4 bounds e'/x' by eps
     to first order: x' is the root to rounding, one sinh/cosh evaluation before the step |dx|
     itself would fall below rounding. (Newton's method, used before, took one sinh/cosh more
-    at about half the width points of a combined case.)
+    at about half the width points of a combined case.) At De = 0 (no elastic part, the heat
+    estimate of the thermal film solve) x0 = asinh(S) is the root: returned without a step.
 
     Parameters
     ----------
@@ -483,6 +484,8 @@ def eyring_maxwell_stress(S, De):
     if S <= 0.0:
         return 0.0, True, 0
     x = np.arcsinh(S)
+    if De == 0.0:                       # purely viscous: sinh(x) = S, the start is the root
+        return x, True, 0
     sh = S                              # sinh(x)
     ch = np.sqrt(1.0 + S * S) if S < EYRING_LARGE_S else S     # cosh(x)
     fp = De + ch                        # f'(x)
@@ -557,7 +560,7 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
         Limiting shear stress at zero pressure and its pressure slope, solid friction
         coefficient and its regularising speed, elastic shear modulus of the film.
     t_transit : float
-        Transit time through the contact, contact length / entrainment speed [s] (1e300: no
+        Transit time through the contact, contact length / entrainment speed [s] (inf: no
         elastic part).
 
     Returns

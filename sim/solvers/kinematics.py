@@ -15,8 +15,8 @@ import numpy as np
 
 from sim._math.jit import kernel
 from sim._math.roots import root_search, root_search_step
-from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, cage_pocket_loads, lubrication_state, pocket_skew_couple,
-                                  roller_friction)
+from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, cage_pocket_loads, friction_loads, lubrication_state,
+                                  pocket_skew_couple, roller_friction)
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
 # friction moments about the skew axis S (Z,), cage z-moments per roller T (Z,)) with respect to
@@ -40,6 +40,17 @@ KinematicJacobian = namedtuple("KinematicJacobian", [
 def empty_jacobian(Z):
     """A :data:`KinematicJacobian` for Z rollers that holds no Jacobian yet."""
     return KinematicJacobian(*(np.zeros(Z) for _ in range(9)), np.zeros(1, dtype=np.bool_))
+
+
+# The rollers' kinematic residuals at one point of the Newton solve (:func:`_kinematic_residuals`),
+# with the friction loads there, which the quasi-static balance takes back at the solution (so that
+# they need not be evaluated again).
+KinematicResiduals = namedtuple("KinematicResiduals", [
+    "M",            # (Z,) spin moments about the roller axes [N mm]
+    "S",            # (Z,) friction moments about the skew axes, without the pocket couple [N mm] (0 without skew)
+    "T",            # (Z,) weighted cage z-moments per roller [N mm]
+    "loads",        # (Z, 3) friction loads on the rollers (sim.physics.friction.friction_loads) [N, N, N mm]
+])
 
 
 # How the kinematics are solved (numba-supported named tuple, built by sim.api.friction_model):
@@ -213,19 +224,21 @@ def solve_kinematics(wc0, wi, wR, psi, case, settings, totals):
 
 
 @kernel
-def _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals):
-    """Roller spin moments M (Z,), friction moments about the skew axes S (Z,) (without the pocket
-    couple; 0 without skew) and cage z-moments per roller T (Z,) [N mm] at (wR, psi, wc); sums
-    into totals."""
+def _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, res, totals):
+    """The :data:`KinematicResiduals` ``res`` at (wR, psi, wc) (written; zeros for the inactive
+    rollers); sums the weighted roller evaluation vectors into totals."""
+    M, S, T, loads = res
     for i in range(NEV):
         totals[i] = 0.0
     for j in range(wR.shape[0]):
         M[j] = 0.0
         S[j] = 0.0
         T[j] = 0.0
+        for a in range(loads.shape[1]):
+            loads[j, a] = 0.0
         if not settings.active[j]:
             continue
-        roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
+        friction_loads(ev, roller_friction(j, wR[j], psi[j], wc, wi, case, ev), loads[j])
         M[j] = ev[EV_MU]
         if case.par.skew:
             S[j] = ev[EV_MS]
@@ -251,7 +264,7 @@ def _scaled_norm(T, M, S, psi, settings, par):
 
 
 @kernel
-def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, jac):
+def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, jac, loads):
     """Newton on all roller speeds (and skews) and the cage speed together (arrow-shaped Jacobian).
 
     Roller j's moments depend on its own speed (and skew) and the cage speed only, so the
@@ -262,8 +275,10 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     in ``jac`` (an earlier iterate's, or the previous film pass's) is tried first: its full
     step is kept if it cuts the squared norm to CHORD_CONTRACTION times its value, else the
     Jacobian is rebuilt at the current point. Same arguments and return value as
-    :func:`solve_kinematics`, and ``jac`` (:data:`KinematicJacobian`, read and written); wR, psi
-    and wc are start values (rolling kinematics and no skew, or a previous solution).
+    :func:`solve_kinematics`, and ``jac`` (:data:`KinematicJacobian`, read and written) and
+    ``loads`` (Z, 3): the friction loads on the rollers at the returned speeds (written, what
+    :func:`sim.physics.friction.cage_pocket_loads` gives there); wR, psi and wc are start values
+    (rolling kinematics and no skew, or a previous solution).
     ``presolve``: for a start far away, such as rolling kinematics of a crowned roller, first
     bring the most loaded active roller to its own moment balance at the start cage speed and
     start every active roller from its speed (measured: the balanced roller speeds of a case
@@ -277,12 +292,11 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     skew = par.skew
     Z = wR.shape[0]
     ev = np.empty(NEV)
-    M = np.zeros(Z)
-    S = np.zeros(Z)
-    T = np.zeros(Z)
-    M2 = np.zeros(Z)
-    S2 = np.zeros(Z)
-    T2 = np.zeros(Z)
+    # residuals at the current point and at a trial (or difference) point
+    res = KinematicResiduals(np.zeros(Z), np.zeros(Z), np.zeros(Z), loads)
+    res2 = KinematicResiduals(np.zeros(Z), np.zeros(Z), np.zeros(Z), np.zeros(loads.shape))
+    M, S, T = res.M, res.S, res.T
+    M2, S2, T2, loads2 = res2
     dw = np.zeros(Z)
     dp = np.zeros(Z)
     St = np.zeros(Z)
@@ -310,7 +324,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
                 if active[j]:
                     wR[j] = w_star
                     psi[j] = p_star
-    _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals)
+    _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, res, totals)
     for _ in range(settings.max_iter):
         norm, worst = _scaled_norm(T, M, S, psi, settings, par)
         if worst <= 1.0:
@@ -319,7 +333,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
         if not chord:
             # Jacobian by forward differences
             hc = FD_STEP * abs(wc)
-            _kinematic_residuals(wc + hc, wi, wR, psi, case, settings, ev, M2, S2, T2, tmp)
+            _kinematic_residuals(wc + hc, wi, wR, psi, case, settings, ev, res2, tmp)
             for j in range(Z):
                 dMdc[j] = (M2[j] - M[j]) / hc
                 dSdc[j] = (S2[j] - S[j]) / hc
@@ -355,7 +369,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
                     psi[j] = _solve_roller_skew(j, wR[j], psi[j], wc, wi, case, ev, tol_M, settings.max_iter)[0]
                     moved = True
             if moved:
-                _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, M, S, T, totals)
+                _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, res, totals)
                 continue
         # eliminate the roller rows: dx_j = -J_j^-1 (R_j + c_j dc), J_j the roller's block
         # [[dMdw, dMdp], [dSdw, Dt]], c_j its cage column; without skew J_j = dM_j/dw_j
@@ -402,7 +416,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
             for j in range(Z):
                 wtrial[j] = wR[j] + step * dw[j]
                 ptrial[j] = psi[j] + step * dp[j]
-            _kinematic_residuals(wc + step * dc, wi, wtrial, ptrial, case, settings, ev, M2, S2, T2, tmp)
+            _kinematic_residuals(wc + step * dc, wi, wtrial, ptrial, case, settings, ev, res2, tmp)
             trial = _scaled_norm(T2, M2, S2, ptrial, settings, par)[0]
             if trial < (CHORD_CONTRACTION * norm if chord else norm):
                 accepted = True
@@ -455,6 +469,8 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
             M[j] = M2[j]
             S[j] = S2[j]
             T[j] = T2[j]
+            for a in range(loads.shape[1]):
+                loads[j, a] = loads2[j, a]
         for i in range(NEV):
             totals[i] = tmp[i]
     return wc, False
@@ -493,7 +509,8 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     totals : ndarray (NEV,)
         Bearing sums of the roller evaluation vectors at the solution (written).
     roller_loads : ndarray (Z, 3)
-        Friction loads on the rollers (:func:`sim.physics.friction.cage_pocket_loads`, written).
+        Friction loads on the rollers (:func:`sim.physics.friction.cage_pocket_loads`, written; by
+        the Newton solve of the last pass when it converged, which evaluated them there).
     jac : KinematicJacobian
         The Newton solves' Jacobian, read and written: :func:`empty_jacobian`, or the one a
         solve of the same case left (its first steps are then chord steps).
@@ -505,6 +522,7 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     active, weight = settings.active, settings.weight
     passes = 2 if settings.traction and fresh else 1
     converged = True
+    loads_known = False     # roller_loads hold the friction loads at the solution
     ev = np.empty(NEV)
     for film_pass in range(passes):
         lubrication_state(wR, wc, wi, active, case)
@@ -516,7 +534,8 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
             start_R = wR.copy()
             start_p = psi.copy()
             wc, converged = solve_kinematics_newton(wc, film_pass == 0 and fresh, wi, wR, psi, case, pass_settings,
-                                                    totals, jac)
+                                                    totals, jac, roller_loads)
+            loads_known = converged
             if not converged:   # bracketing is slower but cannot leave the bracket
                 wR[:] = start_R
                 psi[:] = start_p
@@ -533,5 +552,6 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
                 roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
                 for i in range(NEV):
                     totals[i] += weight[j] * ev[i]
-    cage_pocket_loads(wR, psi, wc, wi, active, case, roller_loads)
+    if not loads_known:
+        cage_pocket_loads(wR, psi, wc, wi, active, case, roller_loads)
     return wc, converged

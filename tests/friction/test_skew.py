@@ -304,7 +304,8 @@ def test_skew_changes_sign_with_the_inner_outer_friction_balance():
     for s in range(2):
         case.film.Eta[:, s] *= 5.0
         wR, psi, totals = pb.wR.copy(), pb.psi.copy(), np.zeros(F.NEV)
-        wc_s, ok = solve_kinematics_newton(wc, False, pb.wi, wR, psi, case, pb.settings, totals, empty_jacobian(len(wR)))
+        wc_s, ok = solve_kinematics_newton(wc, False, pb.wi, wR, psi, case, pb.settings, totals, empty_jacobian(len(wR)),
+                                           np.zeros((len(wR), 3)))
         if not ok:
             wR, psi = pb.wR.copy(), pb.psi.copy()
             wc_s, ok = solve_kinematics(wc, pb.wi, wR, psi, case, pb.settings, totals)
