@@ -13,7 +13,8 @@ from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
 from sim.physics.contact import contact_modulus, hertz_line_pressure
-from sim.physics.elasticity import ELASTICITY_MODES, SliceElasticity, edge_interference, influence_matrix, loaded_lengths
+from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_interference, influence_matrix,
+                                   loaded_lengths)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.roller_contact import BearingArrays, empty_frames
 from sim.solvers.quasi_static import BodyLoads, NewtonSettings, QuasiStaticProblem, RollerSet, solve_bearing
@@ -369,10 +370,8 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     # edge contact (2,) [1]: interference at the roller ends over the contact's largest elastic
     # approach, worst roller (sim.physics.elasticity.edge_interference); > 0: the contact runs
     # onto a roller end, whose sharp edge concentrates the pressure (edge stress)
-    edge_int = np.full(2, -np.inf)
-    for r in range(p.shape[0]):
-        for s in range(2):
-            edge_int[s] = max(edge_int[s], edge_interference(np.ascontiguousarray(raw["free"][r, s]), p[r, s] > thr))
+    edge_int = np.empty(2)
+    edge_interference(np.ascontiguousarray(raw["free"]), p > thr, edge_int)
     C_eff = float(ratings.dynamic_load_rating(g.Dwe, g.Dpw, L_eff, g.Z, g.ratings_alpha, g.b_m)) if L_eff > 0 else 0.0
     res.update(
         pmax=p.max(axis=(0, 2)),

@@ -280,6 +280,13 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol, free):
 
 
 @kernel
+def _signed_penetration(free, loaded, k):
+    """The signed field of the contact ends at slice k [mm]: free_k on a loaded slice (its own
+    deflection, > 0), min(free_k, 0) on an unloaded one (minus the gap its neighbours open)."""
+    return free[k] if loaded[k] else min(free[k], 0.0)
+
+
+@kernel
 def loaded_lengths(free, loaded, w, out):
     """Loaded length of each slice strip [mm]: the contact ends placed between slice centres.
 
@@ -304,11 +311,11 @@ def loaded_lengths(free, loaded, w, out):
         out[k] = 0.0
     if n == 0:
         return
-    fprev = free[0] if loaded[0] else min(free[0], 0.0)
+    fprev = _signed_penetration(free, loaded, 0)
     if fprev > 0.0:
         out[0] += 0.5 * w
     for k in range(n - 1):
-        fnext = free[k + 1] if loaded[k + 1] else min(free[k + 1], 0.0)
+        fnext = _signed_penetration(free, loaded, k + 1)
         if fprev > 0.0 and fnext > 0.0:
             out[k] += 0.5 * w
             out[k + 1] += 0.5 * w
@@ -326,21 +333,22 @@ def loaded_lengths(free, loaded, w, out):
 
 
 @kernel
-def edge_interference(free, loaded):
+def _contact_edge_interference(free, loaded):
     """Interference of one contact at the roller ends, relative to its largest elastic approach [1].
 
-    The signed field of :func:`loaded_lengths` (g_k = free_k on loaded slices, min(free_k, 0) on
-    unloaded ones: a slice's own deflection inside the contact, minus the gap its neighbours open
-    outside) is extrapolated linearly from the two end centres to each roller end, half a slice
-    beyond the end centre: g_end = 1.5 g_0 - 0.5 g_1 (second order, like the contact ends between
-    slice centres). g_end > 0 means the contact runs onto the roller end: the elastic half-space
-    solution of a contact truncated by a sharp edge has a pressure singularity there (like the rigid
-    flat punch, p = P / (pi sqrt(a^2 - x^2)): Johnson 1985, Contact Mechanics, chapter 2), so the end slice's pressure
-    is then a slice average of a peak that grows without bound as the slices are refined (thesis
-    7.2.1: the "stress concentration in the roller edge"). The extrapolation is capped by g_0 so
-    that an unloaded end slice (g_0 <= 0) never counts as edge contact, and is divided by the
-    largest g of the contact (its largest own deflection), which makes it dimensionless and
-    continuous in the pose as slices enter or leave the contact.
+    The signed field of :func:`loaded_lengths` (:func:`_signed_penetration`) is extrapolated
+    linearly from the two end centres to each roller end, half a slice beyond the end centre:
+    g_end = 1.5 g_0 - 0.5 g_1 (second order, like the contact ends between slice centres).
+    g_end > 0 means the contact runs onto the roller end: the elastic half-space solution of a
+    contact truncated by a sharp edge has a pressure singularity there (like the rigid flat punch,
+    p = P / (pi sqrt(a^2 - x^2)): Johnson 1985, Contact Mechanics, chapter 2), so the end slice's
+    pressure is then a slice average of a peak that grows without bound as the slices are refined
+    (thesis 7.2.1: the "stress concentration in the roller edge"). The extrapolation is capped by
+    g_0 so that an unloaded end slice (g_0 <= 0) never counts as edge contact, and is divided by
+    the largest g of the contact (its largest own deflection), which makes it dimensionless and
+    continuous in the pose as slices enter or leave the contact. Its sign converges with the
+    slices once they are narrower than the distance from the contact end to the roller end; its
+    magnitude is a margin for the searches (the own deflections depend on the slice width).
 
     free (N,): free penetrations [mm] (:func:`coupled_slice_loads`); loaded (N,) bool.
     Returns max over both ends of min(g_end, g_0) / max(g) [1]; -inf for a contact without load
@@ -357,10 +365,24 @@ def edge_interference(free, loaded):
     for end in range(2):
         k0 = 0 if end == 0 else n - 1
         k1 = min(1, n - 1) if end == 0 else max(n - 2, 0)
-        g0 = free[k0] if loaded[k0] else min(free[k0], 0.0)
-        g1 = free[k1] if loaded[k1] else min(free[k1], 0.0)
+        g0 = _signed_penetration(free, loaded, k0)
+        g1 = _signed_penetration(free, loaded, k1)
         worst = max(worst, min(1.5 * g0 - 0.5 * g1, g0) / gmax)
     return worst
+
+
+@kernel
+def edge_interference(free, loaded, out):
+    """Worst :func:`_contact_edge_interference` of each race over all rollers [1] (> 0: some roller's
+    contact with that race runs onto a roller end).
+
+    free (Z, 2, N): free penetrations [mm]; loaded (Z, 2, N) bool; out (2,): written (-inf for a
+    race without a loaded contact).
+    """
+    for s in range(2):
+        out[s] = -np.inf
+        for r in range(free.shape[0]):
+            out[s] = max(out[s], _contact_edge_interference(free[r, s], loaded[r, s]))
 
 
 @kernel
