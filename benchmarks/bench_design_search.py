@@ -27,12 +27,14 @@ convergence figure (median and quartiles of the gap against simulations).
 
 Every finished (method, seed) run is written at once to
 ``outputs/benchmarks/design_search/<study>/<method>_seed<k>.nc`` (atomically); a rerun loads
-those and runs only the missing ones, so an interrupted benchmark resumes. The summary goes to
+those and runs only the missing ones and those made by other simulation or search code or
+another study config (:func:`run_fingerprint`), so an interrupted benchmark resumes. The summary goes to
 ``summary.md`` and ``convergence.png`` beside them. Wall times are measured on whatever machine
 runs this, with ``study.n_jobs`` workers for the surrogate loop's batches and one process for the
 direct methods: compare simulations first, seconds second.
 """
 import argparse
+import hashlib
 import importlib.util
 import sys
 import tempfile
@@ -56,8 +58,8 @@ from studies.config import compose  # noqa: E402
 from studies.constraints import rank_key  # noqa: E402
 from studies.evaluate import STATUS, design_matrix  # noqa: E402
 from studies.loop import DesignSearch, round_seed  # noqa: E402
-from studies.reference_optimum import DISTINCT_STARTS, distinct_starts  # noqa: E402
-from studies.refine import local_refine  # noqa: E402
+from studies.reference_optimum import DISTINCT_STARTS  # noqa: E402
+from studies.refine import distinct_starts, local_refine  # noqa: E402
 from studies.search import make_sampler, open_study, run_trials  # noqa: E402
 
 METHODS = ("surrogate", "tpe", "gp", "random", "cobyla")
@@ -162,6 +164,23 @@ def best_so_far_gap(y, feasible, reference):
     return np.minimum.accumulate(v) / reference - 1.0
 
 
+# sources that decide a run besides the simulation (sim/, sim.io.model_fingerprint): the search code
+SEARCH_SOURCES = ("studies", "surrogate")
+
+
+def run_fingerprint(cfg):
+    """SHA-256 of what decides a run: the simulation code (:func:`sim.io.model_fingerprint`), the
+    search code (``SEARCH_SOURCES``) and the composed study config; a stored run with another one
+    is run again (a changed local stage or budget makes the old runs a different method)."""
+    h = hashlib.sha256(model_fingerprint().encode())
+    for folder in SEARCH_SOURCES:
+        for path in sorted((REPO / folder).rglob("*.py")):
+            h.update(str(path.relative_to(REPO)).encode())
+            h.update(path.read_bytes())
+    h.update(OmegaConf.to_yaml(cfg.study, resolve=True).encode())
+    return h.hexdigest()
+
+
 def run_one(method, seed, overrides, budget, n0, reference):
     """One (method, seed) run in a fresh folder -> Dataset of its trace."""
     with tempfile.TemporaryDirectory() as tmp:
@@ -189,7 +208,7 @@ def run_one(method, seed, overrides, budget, n0, reference):
                     {"long_name": "free design parameters of the simulated design (study units)"})},
         coords={"simulation": np.arange(1, len(trace.y) + 1), "parameter": list(names)},
         attrs={"method": method, "seed": seed, "budget": budget, "initial_design": n0,
-               "model_fingerprint": model_fingerprint()})
+               "model_fingerprint": model_fingerprint(), "run_fingerprint": run_fingerprint(compose(overrides))})
 
 
 def summary(runs, reference, out):
@@ -283,9 +302,9 @@ def main(argv=None):
         for seed in range(args.seeds):
             file = out / f"{method}_seed{seed}.nc"
             ds = xr.load_dataset(file) if file.is_file() else None
-            if ds is not None and ds.attrs.get("model_fingerprint") != model_fingerprint():
-                print(f"{file}: computed by another version of the simulation code (sim/ sources): "
-                      f"{'left out' if args.stored_only else 'run again'}", flush=True)
+            if ds is not None and ds.attrs.get("run_fingerprint") != run_fingerprint(cfg):
+                print(f"{file}: computed by another version of the simulation or search code or study config "
+                      f"(run_one's run_fingerprint): {'left out' if args.stored_only else 'run again'}", flush=True)
                 ds = None
             if ds is None and args.stored_only:
                 continue

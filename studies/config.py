@@ -274,6 +274,11 @@ def validate(study):
     _require(_is_number(rf.get("active_tolerance")) and 0.0 <= rf["active_tolerance"] < 0.5,
              "refine.active_tolerance", rf.get("active_tolerance"), "a number in [0, 0.5)")
     _require(_is_int(rf.get("restarts"), 0), "refine.restarts", rf.get("restarts"), "an integer >= 0")
+    _require(_is_int(rf.get("starts"), 1), "refine.starts", rf.get("starts"), "an integer >= 1")
+    _require(_is_number(rf.get("start_distance")) and 0.0 <= rf["start_distance"] <= 1.0, "refine.start_distance",
+             rf.get("start_distance"), "a number in [0, 1] (unit-cube coordinates)")
+    _require(_is_int(rf.get("start_simulations"), 1), "refine.start_simulations", rf.get("start_simulations"),
+             "an integer >= 1")
     _require(_is_number(rf.get("restart_shrink")) and 0.0 < rf["restart_shrink"] <= 1.0, "refine.restart_shrink",
              rf.get("restart_shrink"), "a number in (0, 1]")
     c = s.get("constraints", {})

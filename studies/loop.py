@@ -11,9 +11,11 @@
    full simulation and added to ``training.nc``.
 3. Stop when the verified best has not improved for ``budget.patience`` rounds, when the
    simulation budget is spent, or when no new candidate is left.
-4. Final local stage on the full simulation from the verified best (:mod:`studies.refine`,
-   ``study.refine``): COBYLA under every constraint, its points stored as source ``refinement``
-   (round -1) and outside the loop's budget and rounds.
+4. Final local stage on the full simulation (:mod:`studies.refine`, ``study.refine``): COBYLA
+   under every constraint from the verified best and the next best distinct verified designs
+   (``refine.starts``, screening runs of ``refine.start_simulations``), then restarted from the
+   best point of all; its points stored as source ``refinement`` (round -1) and outside the
+   loop's budget and rounds.
 
 Duty cycle (``study.duty_cycle``, :mod:`studies.cycle`, issue 16 item 5): every design is
 simulated at every load case (results on ``(design, case)``); the objective is the time-weighted
@@ -43,7 +45,7 @@ from studies.cycle import DutyCycle, summary_values
 from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, STATUS_NAMES, case_values, design_matrix, evaluate_design,
                               evaluate_designs, points_dataset, simulate_point, table_from_file, table_to_file,
                               worst_status)
-from studies.refine import SOURCE as REFINEMENT, local_refine
+from studies.refine import SOURCE as REFINEMENT, distinct_starts, local_refine
 from studies.search import complete_trials
 from studies.space import DesignSpace
 from surrogate import (CandidateSettings, Constraint, GPSettings, GPSurrogate, SuccessClassifier, load_surrogates,
@@ -291,13 +293,17 @@ class DesignSearch:
             out.append(margins(values, bearing, self.limits, 0.0 if int(p.status) == STATUS["ok"] else FAILED))
         return np.array(out).reshape(len(out), len(self.limits.names))
 
+    def ranked(self, ds):
+        """Indices of the simulated points, best first (:func:`studies.constraints.rank_key`), and their keys."""
+        keys = [rank_key(v, m) for v, m in zip(self.objective_values(ds), self.point_margins(ds))]
+        return sorted(range(len(keys)), key=keys.__getitem__), keys
+
     def best(self, ds):
         """Index and rank key of the best simulated point (None, None for no points)."""
         if ds.sizes["design"] == 0:
             return None, None
-        keys = [rank_key(v, m) for v, m in zip(self.objective_values(ds), self.point_margins(ds))]
-        i = min(range(len(keys)), key=keys.__getitem__)
-        return i, keys[i]
+        order, keys = self.ranked(ds)
+        return order[0], keys[order[0]]
 
     # ------------------------------------------------------------------ surrogates
     def model_name(self, quantity, k):
@@ -429,8 +435,8 @@ class DesignSearch:
 
     # ------------------------------------------------------------------ final local stage
     def refine(self, ds):
-        """Local stage on the full simulation from the verified best of ``ds`` (the loop's points):
-        returns all points (loop and local stage) and sets :attr:`local`.
+        """Local stage on the full simulation from the best distinct verified designs of ``ds`` (the
+        loop's points): returns all points (loop and local stage) and sets :attr:`local`.
 
         Each point is looked up among the stored ones before it is simulated (a resumed stage
         replays COBYLA's sequence from the same start), and training.nc is rewritten after each.
@@ -441,7 +447,6 @@ class DesignSearch:
             self._refined = ds.isel(design=[])
         if n_max == 0:
             return ds
-        i, _ = self.best(ds)
         span = self.space.high - self.space.low
 
         def stored(x):
@@ -464,9 +469,14 @@ class DesignSearch:
             ok = int(p.status.values[0]) == STATUS["ok"]
             return (float(self.objective_values(p)[0]) if ok else np.nan), self.point_margins(p)[0]
 
-        u0 = self.space.unit(design_matrix(ds, self.space)[i])[0]
-        self.local = local_refine(evaluate, u0, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
-                                  float(r.active_tolerance), int(r.restarts), float(r.restart_shrink))
+        order, _ = self.ranked(ds)
+        starts = distinct_starts(self.space.unit(design_matrix(ds, self.space)[order]), int(r.starts),
+                                 float(r.start_distance))
+        self.log(f"local stage: {len(starts)} start(s), the verified best and the next best designs at least "
+                 f"{float(r.start_distance):g} apart (unit scale)")
+        self.local = local_refine(evaluate, starts, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
+                                  float(r.active_tolerance), int(r.restarts), float(r.restart_shrink),
+                                  int(r.start_simulations))
         # the first margin is the simulation's own (0 whenever it gave a result): no constraint to report
         self.local.active_constraints = [c for c in self.local.active_constraints if c != self.limits.names[0]]
         return xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")

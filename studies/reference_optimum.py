@@ -45,7 +45,7 @@ from studies.constraints import rank_key, violation
 from studies.evaluate import STATUS, design_matrix, table_to_file
 from sim.api.cli import refused
 from studies.optimize import STUDY_ERRORS, elapsed_log, prepared_search
-from studies.refine import local_refine
+from studies.refine import distinct_starts, local_refine
 
 SOURCE_SAMPLE = "reference_sobol"     # ``source`` of the dense sample's points in points.nc
 SOURCE_LOCAL = "reference_local"      # ``source`` of the local runs' points
@@ -104,18 +104,6 @@ class PointStore:
         f = np.where(ds.status.values == STATUS["ok"], self.search.objective_values(ds), np.nan)
         order = sorted(range(len(X)), key=lambda i: rank_key(f[i], M[i]))
         return X[order], f[order], M[order]
-
-
-def distinct_starts(U, count, min_distance):
-    """The first ``count`` rows of U (best first) that lie at least ``min_distance`` (max norm,
-    unit cube) from every row chosen before."""
-    chosen = []
-    for u in U:
-        if all(np.max(np.abs(u - c)) >= min_distance for c in chosen):
-            chosen.append(u)
-            if len(chosen) == count:
-                break
-    return chosen
 
 
 def run_bests(folder, names):

@@ -3,7 +3,7 @@ constrained optimum, active constraints and active bounds are known exactly."""
 import numpy as np
 import pytest
 
-from studies.refine import local_refine
+from studies.refine import distinct_starts, local_refine
 
 SETTINGS = dict(max_evaluations=200, initial_step=0.1, final_step=1e-6, active_tolerance=1e-4)
 
@@ -76,3 +76,44 @@ def test_restarts_start_from_the_best_point_and_stop_when_one_gains_nothing(star
     capped = local_refine(_kinked, start, ["g"], max_evaluations=20, initial_step=0.1, final_step=1e-6,
                           active_tolerance=1e-4, restarts=3, restart_shrink=0.2)
     assert capped.evaluations <= 20   # the restarts share the budget of the stage
+
+
+def _two_basins(u):
+    """min of two bowls, f = min(0.1 + |u - a|^2, |u - b|^2) with a = (0.2, 0.2), b = (0.8, 0.8),
+    subject to u0 <= 0.9: local optima at a (f = 0.1) and at b (f = 0, the global one)."""
+    a, b = np.array([0.2, 0.2]), np.array([0.8, 0.8])
+    return float(min(0.1 + np.sum((u - a) ** 2), np.sum((u - b) ** 2))), np.array([u[0] / 0.9 - 1.0])
+
+
+def test_several_starts_leave_the_basin_of_the_best_start():
+    """A local method stays in the basin of its start: from (0.25, 0.25) (the best start, f = 0.105,
+    in the basin of the local optimum a) COBYLA ends at a (f = 0.1). With a second, worse start
+    (0.5, 0.55) (f = 0.1525, but in b's basin) its screening run finds b, and the result is the
+    global optimum f = 0 (at b within 1e-4, the trust radius 1e-6 on a smooth bowl); the budget
+    covers every start."""
+    one = local_refine(_two_basins, [0.25, 0.25], ["g"], **SETTINGS, restarts=2, restart_shrink=0.2)
+    assert one.value == pytest.approx(0.1, abs=1e-6)
+    both = local_refine(_two_basins, [[0.25, 0.25], [0.5, 0.55]], ["g"], **SETTINGS, restarts=2,
+                        restart_shrink=0.2, start_evaluations=60)
+    np.testing.assert_allclose(both.u, [0.8, 0.8], atol=1e-4)
+    assert both.value == pytest.approx(0.0, abs=1e-6) and both.runs >= 2
+    assert both.start_value == pytest.approx(0.105) and both.evaluations <= SETTINGS["max_evaluations"]
+
+
+def test_screening_runs_share_the_budget():
+    """Each screening run evaluates at most ``start_evaluations`` new points, and all runs together
+    at most ``max_evaluations`` (the starts included); starts beyond the budget are not run."""
+    starts = [[0.25, 0.25], [0.5, 0.55], [0.1, 0.9], [0.9, 0.1]]
+    r = local_refine(_two_basins, starts, ["g"], max_evaluations=30, initial_step=0.1, final_step=1e-9,
+                     active_tolerance=1e-4, start_evaluations=10)
+    assert r.evaluations <= 30 and r.runs <= len(starts)
+    wide = local_refine(_two_basins, starts, ["g"], max_evaluations=1000, initial_step=0.1, final_step=1e-9,
+                        active_tolerance=1e-4, start_evaluations=10)
+    assert wide.runs == len(starts) and wide.evaluations <= len(starts) * 11   # start + 10 new each
+
+
+def test_distinct_starts_keeps_the_best_of_each_neighbourhood():
+    """Rows closer than the distance (max norm) to a row chosen before are skipped, in order."""
+    U = np.array([[0.5, 0.5], [0.52, 0.49], [0.7, 0.5], [0.51, 0.7], [0.9, 0.9]])
+    chosen = distinct_starts(U, 3, 0.1)
+    np.testing.assert_array_equal(np.array(chosen), U[[0, 2, 3]])
