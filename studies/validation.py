@@ -20,6 +20,10 @@ c. Per-component breakdown at the rig case (4.5 kN, 2000 rpm) and the pinion cas
 d. Traction coefficient against slide-to-roll ratio of the lubricant's traction laws
    (:func:`sim.api.traction_curve`) at a twin-disc condition, against the published points of
    ``tests/data/traction_twin_disc_mineral_oil.yaml`` when it holds any.
+e. Sensitivity of the section a and b outputs to each ASSUMED friction parameter over its cited range.
+f. TRB 32208 and TRB 31313, pure axial at two loads each, over speed (500-4000 rpm) and FVA 3
+   temperature (40-70 degC) against SKF 2004: speed and viscosity exponents where both models are
+   rolling-dominated (checked), and where the rib friction makes them part.
 
 ``--quick`` runs a reduced set of loads (the test of this module uses it).
 """
@@ -108,6 +112,29 @@ QUICK_SENSITIVITY = ("lubricant.eyring_stress", "bearing.rib_contact_height_rati
 SENSITIVITY_LOADS = (4500.0, 40000.0)     # N, the TRB 32208 points of the issue's targets
 
 
+#: Section f: TRB torque over speed and oil temperature against SKF 2004, at loads and on a bearing
+#: the targets above do not name: (bearing config, SKF series, catalogue Y, pure axial loads [N]).
+#: Y: SKF 32208 J2/Q 1.6; TRB 31313: 0.73 (Schaeffler series 313, tests/published/test_catalogue_ratings.py).
+SPEED_BEARINGS = {"TRB 32208": ("trb_32208", "322", 1.6, (4500.0, 20000.0)),
+                  "TRB 31313": ("trb_31313", "313", 0.73, (10000.0, 35000.0))}
+SPEED_SWEEP = (500.0, 1000.0, 2000.0, 4000.0)          # rpm, inner ring
+TEMPERATURE_SWEEP = (40.0, 55.0, 70.0)                 # degC, FVA 3 (kinematic viscosity ~95 to ~28 mm^2/s)
+QUICK_SPEED_SWEEP = (1000.0, 4000.0)
+QUICK_TEMPERATURE_SWEEP = (40.0, 70.0)
+#: Speed range of the speed exponents [rpm]: above 500 rpm, where SKF's mixed-film weighting phi_bl
+#: of the sliding moment is off in every case here (the mixed regime is compared separately).
+SPEED_FIT_RANGE = (1000.0, 4000.0)
+#: A case is "rolling-dominated" where the rolling moment is at least this share of the total in
+#: both models at every speed and temperature of the fit; there both are EHL rolling resistance
+#: with an inlet-heating factor and their speed and viscosity exponents are compared.
+ROLLING_DOMINATED = 0.9
+#: Largest difference of those exponents to SKF's: the isothermal exponents differ by 0.058 (this
+#: model's rolling force ~ (eta0 u)^0.658, Goksem & Hargreaves 1978; SKF 2004's M_rr ~ (nu n)^0.6),
+#: and the two inlet shear-heating factors (Gupta et al. 1992 here, SKF's phi_ish) reduce them by
+#: different amounts; 0.1 allows that and no more than a sixth of the exponent.
+EXPONENT_TOLERANCE = 0.1
+
+
 # --------------------------------------------------------------------------------- reference models
 def reference_inputs(bearing="trb_32208", temperature=55.0, speed=2000.0):
     """Inputs of the SKF 2004 and Aihara 1987 models for a TRB, from the project's configs.
@@ -156,7 +183,8 @@ def reference_torques(loads, bearing="trb_32208", series=SKF_SERIES, Y=SKF_Y, te
     Returns
     -------
     dict
-        ``skf_rolling``, ``skf_sliding``, ``skf`` [N mm] (arrays over loads), ``aihara_rolling``
+        ``skf_rolling``, ``skf_sliding``, ``skf`` [N mm] (arrays over loads), ``skf_phi_bl`` [1] (SKF's
+        mixed-film weighting of the sliding moment), ``aihara_rolling``
         [N mm], ``aihara_rib`` [N mm] (loads x rib_film) and ``inputs`` (:func:`reference_inputs`).
     """
     x = reference_inputs(bearing, temperature, speed)
@@ -174,7 +202,8 @@ def reference_torques(loads, bearing="trb_32208", series=SKF_SERIES, Y=SKF_Y, te
         rolling.append(r[0]["rolling"] * 1e3)
         rib.append([ri["rib"] * 1e3 for ri in r])
     return {"skf_rolling": np.array([r["M_rr"] for r in skf]), "skf_sliding": np.array([r["M_sl"] for r in skf]),
-            "skf": np.array([r["M"] for r in skf]), "aihara_rolling": np.array(rolling),
+            "skf": np.array([r["M"] for r in skf]), "skf_phi_bl": np.array([r["phi_bl"] for r in skf]),
+            "aihara_rolling": np.array(rolling),
             "aihara_rib": np.array(rib).reshape(len(loads), len(rib_film)), "inputs": x}
 
 
@@ -231,6 +260,32 @@ def _pure_axial(bearing, loads, speed, temperature, extra=()):
                  f"load.oil_temperature={temperature:g}", *extra])
 
 
+def torque_over_speed(speeds, temperatures):
+    """Section f: each case of :data:`SPEED_BEARINGS` (bearing, pure axial load) over ``speeds`` [rpm]
+    x ``temperatures`` [degC], this model and SKF 2004; per case a dict of (temperature, speed)
+    arrays: ``torque``, ``rolling`` (rolling + hysteresis), ``rib`` [N mm] of this model and
+    ``skf``, ``skf_rolling``, ``skf_sliding`` [N mm], ``skf_phi_bl`` [1]."""
+    out = {}
+    for name, (bearing, series, Y, loads) in SPEED_BEARINGS.items():
+        for Fa in loads:
+            ds, _ = _run([f"bearing={bearing}", f"load.Fa={Fa:g}", "load.Fr=0", f"load.speed={_grid(speeds)}",
+                          "load.tilt=0", f"load.oil_temperature={_grid(temperatures)}"])
+            shape = (len(temperatures), len(speeds))
+            v = {k: np.empty(shape) for k in ("torque", "rolling", "rib", "skf", "skf_rolling", "skf_sliding",
+                                              "skf_phi_bl")}
+            for t, T in enumerate(temperatures):
+                for i, n in enumerate(speeds):
+                    comp = dict(zip(ds.component.values, _pick(ds, "torque_component", speed=n, oil_temperature=T)))
+                    v["torque"][t, i] = _pick(ds, "torque", speed=n, oil_temperature=T)
+                    v["rolling"][t, i] = comp["rolling"] + comp["hysteresis"]
+                    v["rib"][t, i] = comp["rib"]
+                    ref = reference_torques([Fa], bearing=bearing, series=series, Y=Y, temperature=T, speed=n)
+                    for k in ("skf", "skf_rolling", "skf_sliding", "skf_phi_bl"):
+                        v[k][t, i] = ref[k][0]
+            out[f"{name}, {Fa / 1e3:g} kN"] = v
+    return out
+
+
 # ----------------------------------------------------------------------------------------- the data
 def compute(quick=False, traction_data=TRACTION_DATA, log=print):
     """Run every simulation and reference model of the report; the numbers as one Dataset."""
@@ -266,6 +321,10 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
 
     log("e. sensitivity to the assumed parameters")
     sens = sensitivity(quick, speed, temp, rig_loads)
+    speeds = QUICK_SPEED_SWEEP if quick else SPEED_SWEEP
+    temps = QUICK_TEMPERATURE_SWEEP if quick else TEMPERATURE_SWEEP
+    log(f"f. TRBs over {len(speeds)} speeds x {len(temps)} oil temperatures against SKF 2004")
+    over_speed = torque_over_speed(speeds, temps)
 
     components = [str(c) for c in trb.component.values]
     ds = xr.Dataset(coords={
@@ -371,7 +430,41 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
     put("sensitivity", ("parameter", "setting", "sensitivity_output"), [r[3] for r in sens["rows"]], "see sensitivity_output",
         "outputs at the low, base and high parameter value (" + "; ".join(f"{k}: {v}" for k, v in SENSITIVITY_OUTPUTS.items()) + ")")
 
-    # targets (e.)
+    # f.
+    ds = ds.assign_coords(speed_case=("speed_case", list(over_speed), {"long_name": "bearing and pure axial load"}),
+                          temperature_sweep=("temperature_sweep", np.array(temps), {"units": "degC",
+                                                                                "long_name": "oil temperature (FVA 3)"}),
+                          speed_sweep=("speed_sweep", np.array(speeds), {"units": "rpm", "long_name": "inner-ring speed"}),
+                          source=("source", ["this model", "SKF 2004"], {"long_name": "torque model"}))
+    f = list(over_speed.values())
+    put("torque_speed", ("speed_case", "temperature_sweep", "speed_sweep", "source"),
+        [np.stack([v["torque"], v["skf"]], axis=-1) for v in f], "N*mm", "TRB torque, pure axial")
+    put("rolling_share_speed", ("speed_case", "temperature_sweep", "speed_sweep", "source"),
+        [np.stack([v["rolling"] / v["torque"], v["skf_rolling"] / v["skf"]], axis=-1) for v in f], "1",
+        "share of the rolling moment in the torque (this model: rolling + hysteresis; SKF: M_rr)")
+    put("rib_torque_speed", ("speed_case", "temperature_sweep", "speed_sweep"), [v["rib"] for v in f], "N*mm",
+        "this model's rib (roller end) component")
+    put("skf_sliding_speed", ("speed_case", "temperature_sweep", "speed_sweep"), [v["skf_sliding"] for v in f], "N*mm",
+        "SKF 2004 sliding moment M_sl (the flange/rib friction of a TRB)")
+    put("skf_phi_bl_speed", ("speed_case", "temperature_sweep", "speed_sweep"), [v["skf_phi_bl"] for v in f], "1",
+        "SKF 2004 mixed-film weighting phi_bl of the sliding moment (1: boundary, 0: full film)")
+    fit = (np.array(speeds) >= SPEED_FIT_RANGE[0]) & (np.array(speeds) <= SPEED_FIT_RANGE[1])
+    put("speed_exponent", ("speed_case", "temperature_sweep", "source"),
+        [[[_exponent_or_nan(np.array(speeds)[fit], ds.torque_speed.values[c, t, fit, k]) for k in range(2)]
+          for t in range(len(temps))] for c in range(len(f))], "1",
+        f"exponent of torque ~ n^x, least squares over {SPEED_FIT_RANGE[0]:g}-{SPEED_FIT_RANGE[1]:g} rpm")
+    nu = np.array([reference_inputs(temperature=T)["nu"] for T in temps])
+    put("kinematic_viscosity", "temperature_sweep", nu, "mm^2/s", "kinematic viscosity of FVA 3")
+    put("viscosity_exponent", ("speed_case", "speed_sweep", "source"),
+        [[[_exponent_or_nan(nu, ds.torque_speed.values[c, :, i, k]) for k in range(2)] for i in range(len(speeds))]
+         for c in range(len(f))], "1", "exponent of torque ~ nu^x, least squares over the oil temperatures")
+    rolling = ds.rolling_share_speed.min("source") >= ROLLING_DOMINATED
+    put("speed_fit_rolling", ("speed_case", "temperature_sweep"), rolling.isel(speed_sweep=fit).all("speed_sweep"), "1",
+        f"1: rolling moment >= {ROLLING_DOMINATED:g} of the torque in both models over the speed fit range")
+    put("viscosity_fit_rolling", ("speed_case", "speed_sweep"), rolling.all("temperature_sweep"), "1",
+        f"1: rolling moment >= {ROLLING_DOMINATED:g} of the torque in both models at every oil temperature")
+
+    # targets (e., f.)
     rows = targets(ds)
     ds = ds.assign_coords(target=("target", [r["target"] for r in rows], {"long_name": "validation target"}),
                           target_units=("target", [r["units"] for r in rows], {"long_name": "units of the target"}),
@@ -474,6 +567,17 @@ def targets(ds):
                 low, high, "1", "above the TRB" if side > 0 else "below the TRB (near Fr = 2 kN)")
     row("pinion TSRB (Table 7.4) / TRB 31313", issue, float(ds.ratio_pinion), 1.0, np.inf, "1",
         f"still above the TRB (thesis {float(ds.ratio_pinion_thesis):.2f}, +367 %)")
+    if "speed_case" in ds.coords:
+        published = "published model"
+        for var, mask, where in (("speed_exponent", "speed_fit_rolling", "case x oil temperature"),
+                                 ("viscosity_exponent", "viscosity_fit_rolling", "case x speed")):
+            d = ds[var].sel(source="this model") - ds[var].sel(source="SKF 2004")
+            dominated = d.values[ds[mask].values == 1.0]
+            if dominated.size:
+                worst = dominated[int(np.argmax(np.abs(dominated)))]
+                row(f"TRBs: {var.replace('_', ' ')} minus SKF 2004's, worst of {dominated.size} rolling-dominated "
+                    f"({where})", published, worst, -EXPONENT_TOLERANCE, EXPONENT_TOLERANCE, "1",
+                    "section f; EHL rolling resistance in both models")
     return rows
 
 
@@ -612,6 +716,39 @@ def plot_traction(ds, out):
                       "(isothermal)" + ("" if "traction_published" in ds else "; no published points"), fontsize=10)
     axes[1].legend(fontsize=7)
     return _save(fig, out, "traction_curve.png")
+
+
+def plot_speed(ds, out):
+    """Section f: TRB torque against speed at each oil temperature, this model and SKF 2004, with
+    this model's rib component and SKF's sliding moment (both the roller-end/flange friction)."""
+    cases = list(ds.speed_case.values)
+    cols = 2
+    rows = -(-len(cases) // cols)
+    fig = Figure(figsize=(11, 4.2 * rows), layout="constrained")
+    axes = np.atleast_1d(fig.subplots(rows, cols)).ravel()
+    n = ds.speed_sweep.values
+    for ax, c in zip(axes, cases):
+        r = ds.sel(speed_case=c)
+        for k, T in enumerate(ds.temperature_sweep.values):
+            t = r.sel(temperature_sweep=T)
+            x = t.speed_exponent
+            ax.plot(n, t.torque_speed.sel(source="this model"), "o-", color=f"C{k}", lw=2,
+                    label=f"this model, {T:g} degC (x = {float(x.sel(source='this model')):.2f})")
+            ax.plot(n, t.torque_speed.sel(source="SKF 2004"), "s--", color=f"C{k}",
+                    label=f"SKF 2004, {T:g} degC (x = {float(x.sel(source='SKF 2004')):.2f})")
+            ax.plot(n, t.rib_torque_speed, ":", color=f"C{k}", lw=1, label="this model: rib" if k == 0 else None)
+            ax.plot(n, t.skf_sliding_speed, "-.", color=f"C{k}", lw=0.8, alpha=0.6,
+                    label="SKF 2004: sliding M_sl" if k == 0 else None)
+        ax.set(xscale="log", yscale="log", xlabel="inner-ring speed [rpm]", ylabel="frictional torque [N mm]",
+               title=f"{c}, pure axial, FVA 3")
+        ax.set_xticks(n, [f"{v:g}" for v in n])
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6.5, loc="lower right")
+    for ax in axes[len(cases):]:
+        ax.set_visible(False)
+    fig.suptitle(f"Torque ~ n^x: x fitted over {SPEED_FIT_RANGE[0]:g}-{SPEED_FIT_RANGE[1]:g} rpm")
+    return _save(fig, out, "trb_torque_vs_speed.png")
 
 
 # ------------------------------------------------------------------------------------------- report
@@ -774,6 +911,41 @@ def write_report(ds, out, figures):
     a(_table(["parameter", "setting", "value", *outs], rows) + "\n")
     a("Ranges: " + "; ".join(f"`{p}`: {s}" for p, s in zip(ds.parameter.values, ds.parameter_range_source.values)) + ".\n")
 
+    a("## f. TRB torque over speed and oil temperature against SKF 2004\n")
+    a("Cases the targets do not name: TRB 32208 and TRB 31313 (thesis Table 7.3) under pure axial load, over "
+      f"speed and FVA 3 oil temperature; SKF 2004 as in section a, with each bearing's series constants and "
+      f"catalogue Y ({', '.join(f'{k}: {v[2]:g}' for k, v in SPEED_BEARINGS.items())}). A speed exponent (fitted "
+      f"over {SPEED_FIT_RANGE[0]:g}-{SPEED_FIT_RANGE[1]:g} rpm) or a viscosity exponent (over the oil temperatures) "
+      f"is rolling-dominated when the rolling moment is at least {ROLLING_DOMINATED:g} of the torque in both models "
+      "at every point of its fit (this model: rolling + hysteresis; SKF: M_rr; marked * below); there both "
+      "are EHL rolling resistance with an inlet shear-heating factor, and their speed and viscosity exponents must "
+      f"agree within {EXPONENT_TOLERANCE:g} (the isothermal exponents differ by 0.058: (eta0 u)^0.658 here, "
+      "Goksem & Hargreaves 1978, against SKF's (nu n)^0.6; the heating factors differ). Elsewhere the roller-end/rib "
+      "friction decides, and the models part: this model's rib friction carries a mixed-film share that falls as "
+      "the rib film builds with speed, while SKF's sliding moment uses mu_EHL = 0.002 once its weighting phi_bl is "
+      "off and rises steeply (mu_bl = 0.15) where it is on (low speed, hot oil).\n")
+    a(f"![TRB torque against speed]({figures['speed']})\n")
+    rows = []
+    for c in ds.speed_case.values:
+        for T in ds.temperature_sweep.values:
+            r = ds.sel(speed_case=c, temperature_sweep=T)
+            ratio = r.torque_speed.sel(source="this model") / r.torque_speed.sel(source="SKF 2004")
+            rows.append([str(c), f"{T:g}", *[_f(v, "{:.2f}") for v in ratio.values],
+                         _f(r.speed_exponent.sel(source="this model"), "{:.3f}")
+                         + ("*" if float(r.speed_fit_rolling) == 1.0 else ""),
+                         _f(r.speed_exponent.sel(source="SKF 2004"), "{:.3f}"),
+                         f"{float(r.rolling_share_speed.sel(source='this model').min()):.2f}",
+                         f"{float(r.skf_phi_bl_speed.max()):.2g}"])
+    a("Torque of this model over SKF 2004's at each speed, speed exponents x (torque ~ n^x), the smallest rolling "
+      "share of this model and SKF's largest mixed-film weighting phi_bl:\n")
+    a(_table(["case", "oil [degC]", *[f"ratio at {v:g} rpm" for v in ds.speed_sweep.values], "x this model", "x SKF",
+              "rolling share (min)", "SKF phi_bl (max)"], rows) + "\n")
+    a(_table(["case", *[f"viscosity exponent at {v:g} rpm: this model / SKF" for v in ds.speed_sweep.values]],
+             [[str(c), *[f"{float(ds.viscosity_exponent.sel(speed_case=c, speed_sweep=v, source='this model')):.3f} / "
+                         f"{float(ds.viscosity_exponent.sel(speed_case=c, speed_sweep=v, source='SKF 2004')):.3f}"
+                         + ("*" if float(ds.viscosity_fit_rolling.sel(speed_case=c, speed_sweep=v)) == 1.0 else "")
+                         for v in ds.speed_sweep.values]] for c in ds.speed_case.values]) + "\n")
+
     a("## Files\n")
     a("- `validation.nc`: every plotted number with units (CF attributes); the target table as `target_*`.")
     for f in figures.values():
@@ -802,7 +974,7 @@ def main(argv=None):
     ds = compute(quick=args.quick)
     out.mkdir(parents=True, exist_ok=True)
     figures = {"trb": plot_trb_torque(ds, out), "rig": plot_rig(ds, out), "breakdown": plot_breakdown(ds, out),
-               "traction": plot_traction(ds, out)}
+               "traction": plot_traction(ds, out), "speed": plot_speed(ds, out)}
     write_netcdf_atomic(ds, out / "validation.nc")
     report = write_report(ds, out, figures)
     print(f"wrote {report}, {out / 'validation.nc'} and {len(figures)} figures")
