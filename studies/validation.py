@@ -922,7 +922,8 @@ def write_report(ds, out, figures):
       f"agree within {EXPONENT_TOLERANCE:g} (the isothermal exponents differ by 0.058: (eta0 u)^0.658 here, "
       "Goksem & Hargreaves 1978, against SKF's (nu n)^0.6; the heating factors differ). Elsewhere the roller-end/rib "
       "friction decides, and the models part: this model's rib friction carries a mixed-film share that falls as "
-      "the rib film builds with speed, while SKF's sliding moment uses mu_EHL = 0.002 once its weighting phi_bl is "
+      "the rib film builds with speed (as Aihara's 1987 rib term e mu_0 cos(beta) Fa exp(-1.8 Lambda_r^1.2) does "
+      "with its rib film parameter), while SKF's sliding moment uses mu_EHL = 0.002 once its weighting phi_bl is "
       "off and rises steeply (mu_bl = 0.15) where it is on (low speed, hot oil).\n")
     a(f"![TRB torque against speed]({figures['speed']})\n")
     rows = []
