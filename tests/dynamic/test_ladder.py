@@ -255,23 +255,24 @@ def test_skew_changes_sign_with_the_inner_outer_friction_balance_in_time():
     tests/friction/test_skew.py) and the rollers rest on their pockets on the side of the larger.
     The same device as the quasi-static rung: the film viscosity of one race raised five-fold
     (more traction there; the film is held over the window, no refresh), the pinion TSRB from
-    rolling kinematics and zero skew, skew and tilt free, integrated for 0.1 revolution (5.5 ms;
-    the skew settles on the pocket within ~1.5 ms). The mean skew of the window's second half must
-    be negative for every roller with the outer race raised and positive with the inner race
-    raised (signs only: their size is the pocket clearance's, atan(c / Lwe))."""
+    rolling kinematics and zero skew, skew and tilt free, integrated for 0.2 revolution (10.9 ms;
+    the skew creeps onto the pocket, damped by the tractions' slope against the skew rate, within
+    ~2 ms with the inner race raised and ~4 ms with the outer). The mean skew of the window's last
+    quarter must be negative for every roller with the outer race raised and positive with the
+    inner race raised (signs only: their size is the pocket clearance's, atan(c / Lwe))."""
     model, friction, op, plain, dc = dynamic_case(PINION_TSRB + ["friction.skew.enabled=true",
                                                                  "solver.dynamic.start=rolling"])
     problem = dc.problem
     Z = problem.bearing.Z
     film = problem.case.film
     eta = film.Eta.copy()
-    settings = dc.settings._replace(window=0.1 * dc.settings.window, samples=20, max_windows=1)
+    settings = dc.settings._replace(window=0.2 * dc.settings.window, samples=20, max_windows=1)
     skews = []
     for s in range(2):                                  # 0 outer race, 1 inner race
         film.Eta[:] = eta
         film.Eta[:, s] *= 5.0
         integ = Integration(problem, settings).run(dc.y0)
-        skews.append(np.degrees(integ.y[-10:, PSI:Z * NS:NS].mean(axis=0)))
+        skews.append(np.degrees(integ.y[-5:, PSI:Z * NS:NS].mean(axis=0)))
     film.Eta[:] = eta
     print(f"mean skew [deg], outer race friction raised {skews[0].mean():.4f}, inner race raised {skews[1].mean():.4f}")
     assert np.all(skews[0] < 0.0) and np.all(skews[1] > 0.0)
