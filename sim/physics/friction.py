@@ -75,6 +75,9 @@ order in psi:
   bearing axis, so its rib load turns strongly with the skew and holds the roller: a restoring
   moment ~ Q_rib x_end^2 n_r / r_centre per radian). Their e_t components join F_t in the force
   the cage supplies. Gyroscopic skew moments (I_x omega_R omega_c psi, < 1 N mm here) are neglected;
+- a skew rate psi' (the dynamic solver; 0 in the quasi-static solution) is a rotation about v':
+  it moves the slice's roller surface by psi' x along e_t and adds psi' v'.n to the spin about n
+  (rigid-body kinematics, as the spin wR u'), and so damps the skew through the tractions;
 - the cage pocket closes the balance. Nothing else holds a skewed roller elastically: without
   the pocket a TSRB roller's friction moment keeps its sign across every skew (tested), so
   there is no free equilibrium. The pocket is a clearance plus a stiff penalty couple
@@ -557,7 +560,7 @@ def roller_friction(j, wR, psi, wc, wi, case, ev):
     the pocket friction (:func:`pocket_friction`) under the quasi-static pocket force, the
     tangential force F_cage = F_D - F_t that holds the roller on its orbit at the cage speed.
     """
-    roller_traction(j, wR, psi, wc, wi, case, ev)
+    roller_traction(j, wR, psi, 0.0, wc, wi, case, ev)
     FD = roller_drag(wc, case.frames.Cen[j, 0], case.par, ev)
     return pocket_friction(FD - ev[EV_FT], wR, case.par, case.bearing.rho_m, ev)
 
@@ -598,11 +601,12 @@ def pocket_friction(F_cage, wR, par, rho_m, ev):
 
 
 @kernel
-def roller_traction(j, wR, psi, wc, wi, case, ev):
+def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
     """Raceway and rib tractions and rolling resistance of roller j, orbiting at wc [rad/s], at
-    roller speed wR [rad/s], skew psi [rad], inner-ring speed wi [rad/s] (film and frames of
-    ``case``): fills ``ev`` (NEV,) without drag and cage pocket (:func:`roller_friction` adds them;
-    the dynamic solver its own pocket force).
+    roller speed wR [rad/s], skew psi [rad] and skew rate psi_dot [rad/s] (0 in the quasi-static
+    solution), inner-ring speed wi [rad/s] (film and frames of ``case``): fills ``ev`` (NEV,)
+    without drag and cage pocket (:func:`roller_friction` adds them; the dynamic solver its own
+    pocket force).
 
     ev: moment about the roller axis [N mm], z-moment of the contacts on the roller [N mm],
     z-moment on the outer ring [N mm], tangential contact force [N], then the powers [N mm/s]
@@ -650,8 +654,11 @@ def roller_traction(j, wR, psi, wc, wi, case, ev):
             phik = Phi[j, s, k]
             eta = Eta[j, s, k]                                   # (len(quad.wq),) [MPa s]
             v1, v2 = _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz)
-            st = v1 - v2
-            ws = wR * (ur * nr + uz * nz) - Om * nz             # spin about n
+            # a skew rate psi' (rotation about v') moves the roller surface at (X - c) by
+            # psi' v' x (X - c) = psi' x e_t, x = (X - c).u', and adds psi' v'.n to the spin about n
+            # (rigid-body kinematics, as wR u'); 0 at a steady state
+            st = v1 - v2 + psi_dot * (ur * (Xr - cr) + uz * (Xz - cz))
+            ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - Om * nz   # spin about n
             ar = -nz                                             # a = n x e_t in (r, z)
             az = nr
             wroll = wR * (ur * ar + uz * az) - Om * az           # relative rolling about a
@@ -735,7 +742,7 @@ def roller_traction(j, wR, psi, wc, wi, case, ev):
     if Qrib[j] > 0.0:
         prib = film.prib[j]
         v1, v2 = _surface_speeds(wR, wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
-        st = v1 - v2
+        st = v1 - v2 + psi_dot * (ur * (Xrib[j, 0] - cr) + uz * (Xrib[j, 1] - cz))   # skew rate, as the slices
         a_rib = np.sqrt(Qrib[j] / (np.pi * prib))                  # Hertz radius [mm]
         t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)
         g = _traction(par, prib, abs(st), film.hrib[j], film.Phirib[j], film.Etarib[j], t_transit)

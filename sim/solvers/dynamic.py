@@ -48,9 +48,12 @@ Loads (every formula is a physics kernel; this module only assembles them):
   (2-D slip per slice with skew), :func:`sim.physics.friction.roller_drag`; the film (thickness,
   load share, rolling forces, Hertz data, thermal viscosity) is held fixed over a window and
   refreshed between windows (:func:`sim.physics.friction.lubrication_state`, as the
-  quasi-static kinematics hold it over a Newton solve). The slip omits the roller's own
-  translation and tilt/skew rates (micrometres per second against metres per second at the
-  steady state);
+  quasi-static kinematics hold it over a Newton solve). The slip includes the skew rate psi'
+  (each slice moves by psi' x along e_t, the spin about n gains psi' v'.n): it is the only
+  damping of the skew on the TRB's rib, whose restoring stiffness with I_y would otherwise ring
+  undamped at ~2.4 kHz (TRB 31313, 35 kN; damping ratio ~30 with it). It omits the roller's own
+  translation and tilt rates (micrometres per second against metres per second at the steady
+  state; the tilt is held by the stiff, damped raceway contacts);
 - cage pocket: circumferential penalty at the pitch radius, force -k (|g| - c/2) sign(g) beyond
   the half play c/2 plus a damper while in contact (never pulling), both set in smoothly over a
   transition depth (a roller resting on its pocket with a few hundredths of a newton sits there:
@@ -323,7 +326,7 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             case.bearing.Qrib[j] = Qr
             case.bearing.nrib[j, 0] = work.ribc[2]
             case.bearing.nrib[j, 1] = work.ribc[3]
-            roller_traction(j, wR, psi, wphi, body.wi, case, ev)
+            roller_traction(j, wR, psi, psi_dot, wphi, body.wi, case, ev)
             FD = roller_drag(wphi, r, par, ev)
             Fpf = pocket_friction(Fp, wR, par, case.bearing.rho_m, ev)
             Ft_ += ev[EV_FT] - FD

@@ -68,9 +68,34 @@ def test_dynamic_steady_state_matches_the_quasi_static_solver_with_skew(runs, ro
 
 
 def test_the_tsrb_skews_more_and_loses_more_to_skew_than_the_trb(runs):
-    """Thesis 7.4 (Fig. 7.28): the TSRB's roller skew is larger than the TRB 31313's, whose rib
-    restores it; so is the sliding the skew causes. Both solvers with skew."""
+    """Thesis 7.4 (Fig. 7.28), the dynamic ladder's trend rung of issue 18 item 4: the TSRB's
+    roller skew is larger than the TRB 31313's, whose rib restores it; so is the sliding the skew
+    causes. Both solvers with skew, the dynamic one at the steady state its detector found (skew
+    and tilt free, from rolling kinematics and zero skew)."""
     for v in ("quasi_static_skew", "dynamic"):
         tsrb, trb = runs["thesis_design", v], runs["reference_trb", v]
+        assert tsrb["converged"] and trb["converged"], v
         assert tsrb["skew"] > trb["skew"], v
         assert tsrb["skew_sliding"] > trb["skew_sliding"], v
+
+
+# thesis Fig. 7.28 (as issue 18 reads it): roller skew of the order of 0.1-0.6 deg at this case
+THESIS_SKEW_DEG = (0.1, 0.6)
+
+
+@pytest.mark.parametrize("role", [
+    "thesis_design",
+    pytest.param("reference_trb", marks=pytest.mark.xfail(
+        strict=True, reason="TRB 31313 dynamic skew 0.014 deg (quasi-static 0.014): the roller-end sphere's centre "
+                            "lies 5.6 mm from the bearing axis, so the rib load turns with the skew, a restoring "
+                            "stiffness of 7.2e5 of the 7.5e5 N mm/rad against a friction moment of 213 N mm; "
+                            "0.007-0.032 deg over the ASSUMED rib ranges, 0.1 deg needs an end-radius ratio of 0.6 "
+                            "(README, dynamic solver)")),
+])
+def test_dynamic_skew_is_of_the_order_of_thesis_fig_7_28(runs, role):
+    """Thesis Fig. 7.28 (pinion case, skew and tilt free): roller skew of the order of 0.1-0.6
+    deg. The bounds are the issue's reading of the figure (order of magnitude, no tolerance
+    beyond them). The TSRB rests on its pocket (atan(c / Lwe) = 0.355 deg at the ASSUMED 0.15 mm
+    clearance); the TRB 31313 does not reach it (strict xfail: the reason states the numbers)."""
+    skew = runs[role, "dynamic"]["skew"]
+    assert THESIS_SKEW_DEG[0] <= skew <= THESIS_SKEW_DEG[1]
