@@ -23,9 +23,11 @@ longer improves on the best.
 One basin is not enough either: the size_32208 study has local optima 0.27 % and 3.2 % above its
 reference optimum (benchmarks/reference_optima), and the loop's verified best lay in the +3.2 %
 one in 6 of 10 seeds, which one local stage cannot leave. So the stage may start from several
-distinct designs (:func:`distinct_starts`): a screening COBYLA run of at most
-``start_simulations`` points from each, best start first, then the restarts above from the best
-point of all of them (a multi-start local method, as in the reference optima's own refinement).
+distinct designs (:func:`distinct_starts`): the best start first, with COBYLA and its restarts
+as above, on the budget less the others' share, so that it runs as it would alone; then one
+screening COBYLA run of at most ``start_simulations`` points from each other start; and when one
+of them found a better point, the restarts polish it with the budget left (a multi-start local
+method, as in the reference optima's own refinement).
 
 The reported design is the best evaluated point by :func:`studies.constraints.rank_key`
 (feasible by objective first), and with it the constraints and the search bounds that are
@@ -86,9 +88,10 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
         ``evaluate(u) -> (objective, margins)`` for u in the unit cube; the objective is NaN
         where the point has no result (its margins then say why, e.g. the simulation margin).
     u0 : array_like, shape (d,) or (k, d)
-        Start point(s) in [0, 1]^d, best first. With k > 1 each start gets one screening run
-        of at most ``start_evaluations`` new points, and the restarts continue from the best
-        point of all.
+        Start point(s) in [0, 1]^d, best first. The first gets COBYLA and its restarts with the
+        budget less (k - 1) ``start_evaluations``; each other start then one screening run of at
+        most ``start_evaluations`` new points; if one of them found a better point, the restarts
+        polish it with what is left.
     names : sequence of str
         Names of the margins, in order.
     max_evaluations : int
@@ -98,12 +101,12 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
     active_tolerance : float
         A margin (normalised, [1]) or a distance to a bound (unit scale) up to this is active.
     restarts : int
-        COBYLA runs after the first (after the screening runs) at most, each from the best point
-        so far, while the last one improved on it and the budget allows a run (d + 2 points).
+        COBYLA runs after the first at most, each from the best point so far, while the last one
+        improved on it and the budget allows a run (d + 2 points).
     restart_shrink : float
         First step of a restart relative to the previous run's, in (0, 1].
     start_evaluations : int or None
-        New points per screening run with several starts (None: the whole budget, one start).
+        New points per screening run of the starts after the first (None with one start).
 
     Returns
     -------
@@ -147,25 +150,38 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
                         options={"rhobeg": step, "tol": final_step, "maxiter": max(new_points + known, n_min)})
 
     runs = 0
-    per_start = max_evaluations if start_evaluations is None or len(starts) == 1 else int(start_evaluations)
-    for k, start in enumerate(starts):
-        if k and max_evaluations - len(seen) < n_min:
+    message = ""
+
+    def sequence(start, step, cap):
+        """COBYLA from ``start`` at first step ``step``, then the restarts from the best point (each
+        first step ``restart_shrink`` times the last) while one improves, with at most ``cap``
+        points seen in all."""
+        nonlocal runs, message
+        for k in range(restarts + 1):
+            if k and (cap - len(seen) < n_min or step < final_step):
+                break
+            before = rank_key(*best()[1:])
+            message = str(cobyla(start if k == 0 else best()[0], step, cap - len(seen)).message)
+            runs += 1
+            step *= restart_shrink
+            if k and not rank_key(*best()[1:]) < before:
+                break
+
+    # the first start (the verified best) gets the whole budget but the screening runs' share, as
+    # one start alone would; the other starts then screen for a better basin
+    screening = (len(starts) - 1) * int(start_evaluations or 0)
+    sequence(starts[0], initial_step, max(max_evaluations - screening, n_min))
+    main = rank_key(*best()[1:])
+    for start in starts[1:]:
+        if max_evaluations - len(seen) < n_min:
             break
-        res = cobyla(start, initial_step, min(per_start, max_evaluations - len(seen)))
+        message = str(cobyla(start, initial_step, min(int(start_evaluations), max_evaluations - len(seen))).message)
         runs += 1
-    step = initial_step * restart_shrink
-    for _ in range(restarts):
-        if max_evaluations - len(seen) < n_min or step < final_step:
-            break
-        before = rank_key(*best()[1:])
-        res = cobyla(best()[0], step, max_evaluations - len(seen))
-        runs += 1
-        step *= restart_shrink
-        if not rank_key(*best()[1:]) < before:
-            break
+    if rank_key(*best()[1:]) < main and max_evaluations - len(seen) >= n_min:
+        sequence(best()[0], initial_step * restart_shrink, max_evaluations)   # polish the better basin
     best_u, best_f, best_m = best()
     active = [str(n) for n, m in zip(names, best_m) if abs(m) <= active_tolerance]
     bounds = [(k, "low") for k in range(d) if best_u[k] <= active_tolerance] + \
              [(k, "high") for k in range(d) if best_u[k] >= 1.0 - active_tolerance]
-    return LocalResult(best_u, float(best_f), np.asarray(best_m, dtype=float), float(f0), len(seen), str(res.message),
+    return LocalResult(best_u, float(best_f), np.asarray(best_m, dtype=float), float(f0), len(seen), message,
                        runs, active, sorted(bounds))
