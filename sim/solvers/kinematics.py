@@ -14,6 +14,7 @@ from collections import namedtuple
 import numpy as np
 
 from sim._math.jit import kernel
+from sim._math.linalg import copy_vector
 from sim._math.roots import root_search, root_search_step
 from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, cage_pocket_loads, friction_loads, lubrication_state,
                                   pocket_skew_couple, roller_friction)
@@ -537,8 +538,8 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
                                                     totals, jac, roller_loads)
             loads_known = converged
             if not converged:   # bracketing is slower but cannot leave the bracket
-                wR[:] = start_R
-                psi[:] = start_p
+                copy_vector(wR, start_R)
+                copy_vector(psi, start_p)
                 wc, converged = solve_kinematics(start_c, wi, wR, psi, case, pass_settings, totals)
     if not settings.traction:
         for i in range(NEV):
