@@ -27,7 +27,9 @@ SIM_ROOT = Path(__file__).resolve().parents[1]     # the whole sim/ package, eve
 #: characters of the SHA-256 hex digest in the cache folder name (64 bits: no collision in practice)
 CACHE_KEY_LENGTH = 16
 
-_njit = numba.njit(cache=True, fastmath=False, nogil=True, no_cfunc_wrapper=True)
+_JIT_OPTIONS = dict(cache=True, fastmath=False, nogil=True, no_cfunc_wrapper=True)
+_njit = numba.njit(**_JIT_OPTIONS)
+_njit_internal = numba.njit(no_cpython_wrapper=True, **_JIT_OPTIONS)
 
 
 def sim_sources():
@@ -58,9 +60,27 @@ def kernel(func):
     Numba picks a function's cache folder when it is decorated (``numba.config.CACHE_DIR``); it
     is set for that moment only, so other numba users in the process keep their own setting.
     """
+    return _in_cache_dir(_njit, func)
+
+
+def internal_kernel(func):
+    """A :func:`kernel` called only from other kernels: without numba's CPython wrapper
+    (``no_cpython_wrapper=True``), so it cannot be called from Python (except under
+    ``NUMBA_DISABLE_JIT=1``).
+
+    The wrapper unboxes every argument from its Python object: for a kernel taking a bundle
+    such as :data:`sim.physics.friction.FrictionCase` (some 30 arrays and 30 numbers) that is
+    ~1800 lines of LLVM IR to generate, optimise and compile, about half of a friction kernel's
+    own module; a kernel called only from kernels never runs it.
+    """
+    return _in_cache_dir(_njit_internal, func)
+
+
+def _in_cache_dir(decorator, func):
+    """``decorator(func)`` with ``numba.config.CACHE_DIR`` set to :func:`cache_dir` meanwhile."""
     previous = numba.config.CACHE_DIR
     numba.config.CACHE_DIR = cache_dir()
     try:
-        return _njit(func)
+        return decorator(func)
     finally:
         numba.config.CACHE_DIR = previous
