@@ -29,8 +29,16 @@ combined case, tsrb_reference 11.10 -> 9.02 ms and trb_32208 8.61 -> 7.32 ms (th
 run each); in 5 alternating runs of both commits (41 calls each, ``time.process_time``) 11.81 ->
 9.51 ms and 9.24 -> 7.72 ms (-19 %, -16 %), and at load 1.4 (4 runs) 10.34 -> 8.42 ms and 8.07 ->
 6.54 ms (-19 %, -19 %). Load distribution alone unchanged (1.5 / 2.3 ms).
-Cold compile (first ``solve_case`` with a fresh NUMBA_CACHE_DIR, CPU time, 2 runs each): 50.2,
-51.8 -> 51.6, 51.4 s, about half of it the friction kernels: unchanged.
+Cold compile (first ``solve_case`` of tsrb_reference, combined, with a fresh NUMBA_CACHE_DIR,
+CPU time; 2026-11-26, commit 60dfdd5 against its base e6e0dba and the pre-bundle 8da0c47, 3
+alternating runs each at load average 3.5-4.6): 42.0, 38.2, 41.6 -> 32.5, 33.3, 33.0 s (-21 %);
+8da0c47 24.0, 20.7, 23.5 s, so still +40 % over the pre-bundle code (which also compiled less:
+no Eyring traction, thermal film, skew or in-kernel bracketing fallback). The cut: no CPython
+wrapper on the kernels called only from kernels (``sim._math.jit.internal_kernel``), no
+C-callable wrappers, one specialisation each of ``solve_dense`` and ``_signed_penetration``, no
+compiled shape-error message. Warm, this script's friction CPU medians unchanged (4 alternating
+runs each, median of the medians, load 4.7-4.9): tsrb_reference combined 8.07 -> 8.03 ms,
+trb_32208 combined 6.51 -> 6.41 ms, pure axial 1.93 -> 1.93 and 1.40 -> 1.40 ms.
 """
 import argparse
 import os

@@ -1,8 +1,10 @@
 """The project's one numba setup.
 
 Every hot kernel is decorated with :func:`kernel`: ``njit`` with an on-disk cache (CI and
-sweeps pay the compile time once) and strict float semantics. Setting the environment
-variable ``NUMBA_DISABLE_JIT=1`` runs the same code as plain Python (tests pass either way).
+sweeps pay the compile time once) and strict float semantics, without the C-callable
+wrapper numba builds by default for first-class function use (no kernel is passed as a
+function value; each wrapper kept a non-inlined copy of its kernel to compile). Setting the
+environment variable ``NUMBA_DISABLE_JIT=1`` runs the same code as plain Python (tests pass either way).
 
 Cache validity. Numba keys a cached kernel on its own source file only (modification time and
 size): a kernel whose callee in another module changed would load the stale machine code of the
@@ -25,7 +27,9 @@ SIM_ROOT = Path(__file__).resolve().parents[1]     # the whole sim/ package, eve
 #: characters of the SHA-256 hex digest in the cache folder name (64 bits: no collision in practice)
 CACHE_KEY_LENGTH = 16
 
-_njit = numba.njit(cache=True, fastmath=False, nogil=True)
+_JIT_OPTIONS = dict(cache=True, fastmath=False, nogil=True, no_cfunc_wrapper=True)
+_njit = numba.njit(**_JIT_OPTIONS)
+_njit_internal = numba.njit(no_cpython_wrapper=True, **_JIT_OPTIONS)
 
 
 def sim_sources():
@@ -50,14 +54,33 @@ def cache_dir():
 
 
 def kernel(func):
-    """``numba.njit(cache=True, fastmath=False, nogil=True)`` with the cache in :func:`cache_dir`.
+    """``numba.njit(cache=True, fastmath=False, nogil=True, no_cfunc_wrapper=True)`` with the cache in
+    :func:`cache_dir`.
 
     Numba picks a function's cache folder when it is decorated (``numba.config.CACHE_DIR``); it
     is set for that moment only, so other numba users in the process keep their own setting.
     """
+    return _in_cache_dir(_njit, func)
+
+
+def internal_kernel(func):
+    """A :func:`kernel` called only from other kernels: without numba's CPython wrapper
+    (``no_cpython_wrapper=True``), so it cannot be called from Python (except under
+    ``NUMBA_DISABLE_JIT=1``).
+
+    The wrapper unboxes every argument from its Python object: for a kernel taking a bundle
+    such as :data:`sim.physics.friction.FrictionCase` (some 30 arrays and 30 numbers) that is
+    ~1800 lines of LLVM IR to generate, optimise and compile, about half of a friction kernel's
+    own module; a kernel called only from kernels never runs it.
+    """
+    return _in_cache_dir(_njit_internal, func)
+
+
+def _in_cache_dir(decorator, func):
+    """``decorator(func)`` with ``numba.config.CACHE_DIR`` set to :func:`cache_dir` meanwhile."""
     previous = numba.config.CACHE_DIR
     numba.config.CACHE_DIR = cache_dir()
     try:
-        return _njit(func)
+        return decorator(func)
     finally:
         numba.config.CACHE_DIR = previous

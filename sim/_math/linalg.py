@@ -8,17 +8,17 @@ no broadcasting machinery to compile.
 """
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel
 
 
-@kernel
+@internal_kernel
 def copy_vector(dst, src):
     """dst[i] = src[i] for arrays of equal shape (N,)."""
     for i in range(dst.shape[0]):
         dst[i] = src[i]
 
 
-@kernel
+@internal_kernel
 def copy_matrix(dst, src):
     """dst[i, k] = src[i, k] for arrays of equal shape (N, M)."""
     for i in range(dst.shape[0]):
@@ -26,18 +26,17 @@ def copy_matrix(dst, src):
             dst[i, k] = src[i, k]
 
 
-@kernel
+@internal_kernel
 def solve_dense(A, B):
-    """Solve A X = B for square A (n x n) and B (n,) or (n x m); returns X (A and B untouched).
+    """Solve A X = B for square A (n x n) and B (n x m); returns X (A and B untouched).
 
-    Returns NaN where A is singular to working precision; callers check the result.
+    Returns NaN where A is singular to working precision; callers check the result. B is 2-D
+    only (one column for a single right-hand side): each array shape is a kernel of its own to
+    compile.
     """
     n = A.shape[0]
     M = A.copy()
-    if B.ndim == 1:
-        X = B.copy().reshape((n, 1))
-    else:
-        X = B.copy()
+    X = B.copy()
     m = X.shape[1]
     for c in range(n):
         piv = c
@@ -48,7 +47,7 @@ def solve_dense(A, B):
                 piv = r
         if big == 0.0:
             X[:, :] = np.nan
-            return X.reshape(B.shape)
+            return X
         if piv != c:
             for k in range(n):
                 tmp = M[c, k]
@@ -73,4 +72,4 @@ def solve_dense(A, B):
             for j in range(c + 1, n):
                 s -= M[c, j] * X[j, k]
             X[c, k] = s * inv
-    return X.reshape(B.shape)
+    return X

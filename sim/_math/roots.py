@@ -20,7 +20,7 @@ which numba compiles and caches like any other argument.
 """
 from collections import namedtuple
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel
 
 # State of a bracketed root search. x: where the caller evaluates next, or the root once done;
 # (lo, hi), (flo, fhi): bracket and function values at its ends (one end's value is pending
@@ -40,7 +40,7 @@ WIDEN_SPANS = 2.0
 ILLINOIS_FACTOR = 0.5
 
 
-@kernel
+@internal_kernel
 def root_search(lo, flo, hi, tol_f, tol_x, max_steps):
     """Open a root search on the guess (lo, hi) with the value f(lo) = flo; asks for f(hi).
 
@@ -66,7 +66,7 @@ def root_search(lo, flo, hi, tol_f, tol_x, max_steps):
                       int(max_steps))
 
 
-@kernel
+@internal_kernel
 def root_search_step(search, fx):
     """Advance a root search by the value fx = f(search.x).
 

@@ -20,7 +20,7 @@ two disks, so the penetration is the larger of the two arcs' penetrations).
 """
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel, kernel
 from sim.geometry import RACE_LENS, RACE_LINE  # noqa: F401  (profile kinds, defined once)
 
 # Penetration [mm] of a contact that does not exist: below any real penetration (the start of a
@@ -68,7 +68,7 @@ def race_penetration(qr, qz, kind, par):
     return best, nr, nz
 
 
-@kernel
+@internal_kernel
 def lens_penetration(qr, qz, par):
     """Penetration of a point into a RACE_LENS profile and the arc that bounds it there.
 
@@ -104,7 +104,7 @@ def lens_penetration(qr, qz, par):
     return best, nr, nz, radius
 
 
-@kernel
+@internal_kernel
 def to_ring(qr, qz, ring_dr, ring_dz, ring_phi):
     """A meridian point in world (r, z) -> the ring's coordinates [mm]: Rot(-phi) (q - translation),
     the ring displaced by (ring_dr, ring_dz) [mm] and turned by ring_phi [rad] (world = Rot(phi) ring
@@ -191,7 +191,7 @@ def slice_contact_meridian(x, rho, side, pose, alpha, Dpw, kind, par, ring_dr, r
         q_out[k, 1] = qz
 
 
-@kernel
+@internal_kernel
 def _surface_distance_3d(px, py, pz, ax, ay, az, ox, oy, oz, kind, par):
     """Penetration of a 3-D point into a raceway of revolution about axis a through o."""
     dx = px - ox
@@ -297,7 +297,7 @@ def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kin
         n_out[k, 2] = nr * rz / rr + nz * ring_axis[2]
 
 
-@kernel
+@internal_kernel
 def _pen_on_circle(t, bx, by, bz, rho, e1x, e1y, e1z, e2x, e2y, e2z, ring_origin, ring_axis, kind, par):
     c = np.cos(t)
     s = np.sin(t)
@@ -351,7 +351,7 @@ def hertz_line_pressure(line_load, R, E_star):
     return np.sqrt(line_load * E_star / (np.pi * R))
 
 
-@kernel
+@internal_kernel
 def hertz_point_load(delta, R, E_star):
     """Load of a Hertz sphere-on-plane contact from its approach.
 

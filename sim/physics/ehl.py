@@ -31,7 +31,7 @@ modulus of the EHL formulas is Hamrock's ``E' = 2 E*`` (E* of :func:`sim.physics
 """
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel, kernel
 
 FILM_PAN_HAMROCK = 0
 FILM_DOWSON_HIGGINSON = 1
@@ -305,7 +305,7 @@ def flash_temperature_rise(q, half_length, U1, U2, k_s, kappa_s):
     return 4.0 / 3.0 * q * np.sqrt(2.0 * half_length * kappa_s / np.pi) / (k_s * su)
 
 
-@kernel
+@internal_kernel
 def _tanh_over_x(x):
     """tanh(x)/x, continuous at 0 (series 1 - x^2/3 below 1e-4, where its error is < 1e-17)."""
     if x < 1e-4:
@@ -429,7 +429,7 @@ EYRING_MAX_STEPS = 100
 EYRING_LARGE_S = 1e150
 
 
-@kernel
+@internal_kernel
 def _sinh_cosh(x):
     """(sinh x, cosh x) for x >= 0 from one expm1 (accurate near 0 too: no e^x - e^-x cancellation)."""
     em = np.expm1(x)
@@ -574,7 +574,7 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
     return g
 
 
-@kernel
+@internal_kernel
 def film_traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, G, t_transit):
     """Film part (1 - phi) tau_L tanh(tau_M/tau_L)/|v| of :func:`traction_eyring` [MPa s/mm]
     (same arguments; h > 0)."""

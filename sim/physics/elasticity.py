@@ -27,7 +27,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import solve_dense
 
 # solver.elasticity: independent slices (ISO/TS 16281) or elastically coupled slices
@@ -84,7 +84,7 @@ def influence_matrix(x, w, E_star):
 _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(8)
 
 
-@kernel
+@internal_kernel
 def self_deflection(q, w, R, E_star):
     """Deflection of a slice under its own load, and its derivative.
 
@@ -132,7 +132,7 @@ def self_deflection(q, w, R, E_star):
     return c * q * integral, c * (integral - 0.5 * beta * dintegral)
 
 
-@kernel
+@internal_kernel
 def independent_slice_loads(d, k_line, q, dq):
     """Line load of independent slices, ISO/TS 16281.
 
@@ -231,7 +231,7 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol, free):
         changed = False
         # Newton on the active set; a slice whose Newton step crosses zero load is released
         J = np.empty((m, m))
-        F = np.empty(m)
+        F = np.empty((m, 1))       # one column: the shape of the other sim._math.linalg.solve_dense call
         for it in range(NEWTON_MAX_ITER):
             total += 1
             fmax = 0.0
@@ -243,23 +243,23 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol, free):
                     s += C[k, idx[bb]] * q[idx[bb]]
                 u, du = self_deflection(q[k], w, R[k], E_star)
                 J[a, a] = du
-                F[a] = s + u - d[k]
+                F[a, 0] = s + u - d[k]
                 free[k] = d[k] - s
-                if abs(F[a]) > fmax:
-                    fmax = abs(F[a])
+                if abs(F[a, 0]) > fmax:
+                    fmax = abs(F[a, 0])
             if fmax <= tol or m == 0:
                 break
             dq = solve_dense(J, -F)
             for a in range(m):
                 k = idx[a]
-                if q[k] + dq[a] <= 0.0:
+                if q[k] + dq[a, 0] <= 0.0:
                     q[k] = 0.0
                     active[k] = False
                     changed = True
             if changed:
                 break
             for a in range(m):
-                q[idx[a]] += dq[a]
+                q[idx[a]] += dq[a, 0]
         if changed:
             continue
         # add penetrating slices that the neighbours' deflection does not open
@@ -279,7 +279,7 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol, free):
     return False, total
 
 
-@kernel
+@internal_kernel
 def _signed_penetration(free, loaded, k):
     """The signed field of the contact ends at slice k [mm]: free_k on a loaded slice (its own
     deflection, > 0), min(free_k, 0) on an unloaded one (minus the gap its neighbours open)."""
@@ -311,7 +311,7 @@ def loaded_lengths(free, loaded, w, out):
         out[k] = 0.0
     if n == 0:
         return
-    fprev = _signed_penetration(free, loaded, 0)
+    fprev = _signed_penetration(free, loaded, np.int64(0))   # not the literal 0: a second, Literal[int] copy
     if fprev > 0.0:
         out[0] += 0.5 * w
     for k in range(n - 1):
@@ -332,7 +332,7 @@ def loaded_lengths(free, loaded, w, out):
         out[n - 1] += 0.5 * w
 
 
-@kernel
+@internal_kernel
 def _contact_edge_interference(free, loaded):
     """Interference of one contact at the roller ends, relative to its largest elastic approach [1].
 
@@ -385,7 +385,7 @@ def edge_interference(free, loaded, out):
             out[s] = max(out[s], _contact_edge_interference(free[r, s], loaded[r, s]))
 
 
-@kernel
+@internal_kernel
 def _load_from_self_deflection(u, w, R, E_star):
     """Line load [N/mm] whose self deflection is u [mm] (fixed point on the slowly varying log)."""
     q = u * np.pi * E_star / (2.0 * WIDE_STRIP_LOG_START)
@@ -395,7 +395,7 @@ def _load_from_self_deflection(u, w, R, E_star):
     return q
 
 
-@kernel
+@internal_kernel
 def coupled_slice_compliance(C, w, R, E_star, q, active, J):
     """Tangent of the coupled slices on the active set: dq/dd = J^-1 (J written, N x N, zero-padded).
 

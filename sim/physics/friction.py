@@ -98,7 +98,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel, kernel
 from sim._math.roots import root_search, root_search_step
 from sim.physics.contact import hertz_line_half_width, hertz_line_pressure
 from sim.physics.ehl import (film_line, film_point, film_temperature_rise, film_traction_eyring, film_traction_maxwell,
@@ -180,7 +180,7 @@ def _traction(par, p, v, h, phi, eta_p, t_transit):
     return traction_per_speed(p, v, h, phi, eta_p, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G, t_transit)
 
 
-@kernel
+@internal_kernel
 def _film_traction(par, p, v, h, phi, eta_p, t_transit):
     """The film part of :func:`_traction` (h > 0, phi < 1): :func:`_traction` is the solid part
     (sim.physics.ehl.traction_solid) plus this."""
@@ -255,7 +255,7 @@ NO_RELAXATION = math.inf
 FILM_TEMPERATURE_MAX_STEPS = np.int64(100)
 
 
-@kernel
+@internal_kernel
 def _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz):
     """Speeds along e_t of the roller surface and of the ring surface at (Xr, Xz) [mm/s].
 
@@ -271,7 +271,7 @@ WP_P, WP_TERM, WP_V, WP_W, WP_SOLID = range(5)   # pressure [MPa], sim.physics.e
 NWP = 5                                          # sliding speed [mm/s], weight [1], solid traction / speed
 
 
-@kernel
+@internal_kernel
 def _width_points(p0k, bk, par, quad, pts):
     """Pressures of a contact's width points and their :func:`sim.physics.ehl.pressure_term` into
     ``pts[WP_P]``, ``pts[WP_TERM]``; returns the number of points. Line slice (bk > 0): p0 cos(t)
@@ -284,7 +284,7 @@ def _width_points(p0k, bk, par, quad, pts):
     return npts
 
 
-@kernel
+@internal_kernel
 def _heat_flux(theta, hk, phik, npts, q_sol, par, pts):
     """Mean frictional heat flux of a contact [N/(mm s)]: (lubricant film, total).
 
@@ -342,7 +342,7 @@ def _viscosity_factor(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad):
     return _viscosity_factor_at(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad, npts, pts)
 
 
-@kernel
+@internal_kernel
 def _viscosity_factor_at(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad, npts, pts):
     """:func:`_viscosity_factor` on the contact's ``npts`` width points ``pts`` (NWP, len(quad.wq)),
     pressures filled by :func:`_width_points` (:func:`lubrication_state` reuses their pressure
@@ -565,7 +565,7 @@ def roller_friction(j, wR, psi, wc, wi, case, ev):
     return pocket_friction(FD - ev[EV_FT], wR, case.par, case.bearing.rho_m, ev)
 
 
-@kernel
+@internal_kernel
 def friction_loads(ev, F_pocket, out):
     """Friction loads on a roller in its meridian plane [N, N mm], the layout of the quasi-static
     roller loads (along u', along v', about u' x v'), from its :func:`roller_friction` evaluation
@@ -576,7 +576,7 @@ def friction_loads(ev, F_pocket, out):
     out[2] = ev[EV_MW]
 
 
-@kernel
+@internal_kernel
 def roller_drag(wc, rc, par, ev):
     """Oil drag on a roller orbiting at wc [rad/s] with its centre at radius rc [mm] (module
     docstring; reacted by the housing = outer ring): adds its z-moments and power to ``ev`` and
@@ -588,7 +588,7 @@ def roller_drag(wc, rc, par, ev):
     return FD
 
 
-@kernel
+@internal_kernel
 def pocket_friction(F_cage, wR, par, rho_m, ev):
     """Cage pocket friction on a roller spinning at wR [rad/s] that the pocket pushes with the
     tangential force F_cage [N] (module docstring): the moment mu_c |F_cage| rho_m [N mm] against
@@ -764,7 +764,7 @@ def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
             ev[EV_FT] -= Qrib[j] * phi * nr
 
 
-@kernel
+@internal_kernel
 def cage_pocket_loads(wR, psi, wc, wi, active, case, loads):
     """Friction loads on every active roller in its meridian plane [N, N mm], the layout of the
     quasi-static roller loads (along u', along v', about u' x v'): the cage pocket friction force

@@ -30,7 +30,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import solve_dense
 from sim.geometry import RACE_LENS
 from sim.physics.contact import (NO_CONTACT, hertz_point_load, lens_penetration, roller_axes, slice_contact_meridian,
@@ -98,7 +98,7 @@ def empty_roller_contact(n):
                          np.zeros(2 * n + 1), np.zeros(4), frames, np.zeros((2, n)))
 
 
-@kernel
+@internal_kernel
 def roller_frames(pose, ring, phi, cpsi, bearing, d, frames):
     """Contact frames of one roller at a pose: slice contact points, normals and penetrations on
     both raceways, roller centre and axes, roller-end / rib point.

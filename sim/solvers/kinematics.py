@@ -13,7 +13,8 @@ from collections import namedtuple
 
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel, kernel
+from sim._math.linalg import copy_vector
 from sim._math.roots import root_search, root_search_step
 from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, cage_pocket_loads, friction_loads, lubrication_state,
                                   pocket_skew_couple, roller_friction)
@@ -99,7 +100,7 @@ FINAL_TOLERANCE_FACTOR = 0.1
 MAX_HALVINGS = 30
 
 
-@kernel
+@internal_kernel
 def _solve_roller_speed(j, w0, psi, wc, wi, case, ev, tol_M, max_iter):
     """omega_R of roller j at skew psi with zero moment about its axis (bracketed root,
     sim._math.roots).
@@ -118,13 +119,13 @@ def _solve_roller_speed(j, w0, psi, wc, wi, case, ev, tol_M, max_iter):
     return search.x, search.converged
 
 
-@kernel
+@internal_kernel
 def _skew_moment(ev, psi, par):
     """Moment about the skew axis of roller friction (ev[EV_MS]) and cage pocket [N mm]."""
     return ev[EV_MS] + pocket_skew_couple(psi, par)[0]
 
 
-@kernel
+@internal_kernel
 def _solve_roller_skew(j, wR, p0, wc, wi, case, ev, tol_M, max_iter):
     """Skew psi of roller j at speed wR with zero moment about its skew axis (bracketed root;
     the pocket couple makes the moment fall through zero beyond the clearance whatever the
@@ -143,7 +144,7 @@ def _solve_roller_skew(j, wR, p0, wc, wi, case, ev, tol_M, max_iter):
     return search.x, search.converged
 
 
-@kernel
+@internal_kernel
 def _solve_roller(j, w0, p0, wc, wi, case, ev, tol_M, max_iter):
     """Speed and skew of roller j at cage speed wc with zero moments about its axis and its skew
     axis: the speed alone without skew, else alternately speed (at the skew) and skew (at the
@@ -163,7 +164,7 @@ def _solve_roller(j, w0, p0, wc, wi, case, ev, tol_M, max_iter):
     return w, psi, False
 
 
-@kernel
+@internal_kernel
 def _cage_moment(wc, wi, wR, psi, case, settings, ev, totals):
     """Sum of the z-moments on all rollers at cage speed wc, each roller at its own moment balance.
 
@@ -223,7 +224,7 @@ def solve_kinematics(wc0, wi, wR, psi, case, settings, totals):
     return search.x, search.converged and ok
 
 
-@kernel
+@internal_kernel
 def _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, res, totals):
     """The :data:`KinematicResiduals` ``res`` at (wR, psi, wc) (written; zeros for the inactive
     rollers); sums the weighted roller evaluation vectors into totals."""
@@ -247,7 +248,7 @@ def _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, res, totals):
             totals[i] += settings.weight[j] * ev[i]
 
 
-@kernel
+@internal_kernel
 def _scaled_norm(T, M, S, psi, settings, par):
     """Squared norm and largest entry of the residuals scaled by their tolerances (the skew
     residuals with the pocket couple)."""
@@ -537,8 +538,8 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
                                                     totals, jac, roller_loads)
             loads_known = converged
             if not converged:   # bracketing is slower but cannot leave the bracket
-                wR[:] = start_R
-                psi[:] = start_p
+                copy_vector(wR, start_R)
+                copy_vector(psi, start_p)
                 wc, converged = solve_kinematics(start_c, wi, wR, psi, case, pass_settings, totals)
     if not settings.traction:
         for i in range(NEV):

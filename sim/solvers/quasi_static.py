@@ -65,7 +65,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from sim._math.jit import kernel
+from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import copy_matrix, copy_vector
 from sim.physics.contact import roller_axes
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
@@ -142,7 +142,7 @@ EXTEND = 0.5
 END_ARM = 0.5
 
 
-@kernel
+@internal_kernel
 def _local_to_pose(pose, da, db, dth):
     """Apply a local step (da along u', db along v' of the current tilt [mm], dth [rad]) to a pose."""
     c = np.cos(pose[2])
@@ -152,7 +152,7 @@ def _local_to_pose(pose, da, db, dth):
     pose[2] += dth
 
 
-@kernel
+@internal_kernel
 def _kinematic_pose(ring, phi, cpsi, bearing, pose):
     """Start pose of a roller: rigid, midway between the rings (written to ``pose``).
 
@@ -174,7 +174,7 @@ def _kinematic_pose(ring, phi, cpsi, bearing, pose):
     pose[2] = 0.5 * phi
 
 
-@kernel
+@internal_kernel
 def _solve_small(A, b, out, m):
     """Solve the leading m x m block A[:m, :m] out[:m] = b[:m] (m <= NQ) by Gaussian elimination
     with partial pivoting on a small work copy. Returns False when singular to working precision.
@@ -211,7 +211,7 @@ def _solve_small(A, b, out, m):
     return True
 
 
-@kernel
+@internal_kernel
 def _roller_residual(f, theta, alpha, Lwe, body, ext, R):
     """Residual of one roller (contact forces f at tilt theta + body + external loads) in its
     frame; returns the max-norm.
@@ -225,7 +225,7 @@ def _roller_residual(f, theta, alpha, Lwe, body, ext, R):
     return max(abs(R[0]), abs(R[1]), abs(R[2]) / Lwe)
 
 
-@kernel
+@internal_kernel
 def _trial_pose(pose, t, p, trial, ring, ring_t, lc):
     """Trial pose ``pose + t p`` (local chart) and ring (delta_a + t p[3] under load control)
     (written to trial and ring_t)."""
@@ -235,7 +235,7 @@ def _trial_pose(pose, t, p, trial, ring, ring_t, lc):
     ring_t[1] = ring[1]
 
 
-@kernel
+@internal_kernel
 def _trial_residual(f, theta, alpha, Lwe, body, ext, Fa_share, R):
     """Roller residual (R[0:3]) and, under load control (Fa_share > 0), the ring's
     (R[3] = Fa_share + f[3]); returns the max-norm [N] (moment / Lwe)."""
@@ -246,7 +246,7 @@ def _trial_residual(f, theta, alpha, Lwe, body, ext, Fa_share, R):
     return err
 
 
-@kernel
+@internal_kernel
 def _work(R0, R1, p, m, t):
     """Work of the residual forces along the step t p, trapezoidal rule [N mm]: the decrease of
     the potential energy, exact for a quadratic energy."""
@@ -256,7 +256,7 @@ def _work(R0, R1, p, m, t):
     return 0.5 * t * s
 
 
-@kernel
+@internal_kernel
 def _roller_jacobian(K, R, ext, Lscale, Kq, m):
     """Jacobian -dR/dy of the roller residual in the local chart (written to ``Kq[:m, :m]``).
 
@@ -276,7 +276,7 @@ def _roller_jacobian(K, R, ext, Lscale, Kq, m):
     Kq[2, 2] += reg * Lscale * Lscale
 
 
-@kernel
+@internal_kernel
 def _bounded_step(Kq, R, m, G, d, d_step, arm, max_len, ring_step, p):
     """Newton step Kq p = R (first m unknowns) and its bound factor c in (0, 1] (solve_roller).
 
@@ -577,7 +577,7 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
     return 0, max_iter, evals
 
 
-@kernel
+@internal_kernel
 def _residual_out(R, merit, Rout):
     """Rout = (R0 [N], R1 [N], R2 [N mm], residual max-norm [N]) of the returned state."""
     Rout[0] = R[0]
@@ -586,7 +586,7 @@ def _residual_out(R, merit, Rout):
     Rout[3] = merit
 
 
-@kernel
+@internal_kernel
 def _release(f, K, q, active, Q):
     """State of a roller the rings do not squeeze: no load, no stiffness (the cage holds it)."""
     for a in range(NY):
