@@ -54,4 +54,4 @@ def test_range_sweep_is_refused():
 def test_sim_uses_no_private_hydra_module():
     """Issue 13 item 5: nothing in sim/ imports or names ``hydra._internal``."""
     for path in sim._math.jit.sim_sources():
-        assert "_internal" not in path.read_text(), path
+        assert "hydra._internal" not in path.read_text(), path
