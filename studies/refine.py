@@ -57,6 +57,7 @@ class LocalResult:
     evaluations: int                # distinct points evaluated (the starts included)
     message: str                    # the last COBYLA run's stop message
     runs: int                       # COBYLA runs (one per start, then the restarts that were made)
+    starts: int = 1                 # starts run (the first, then those screened)
     active_constraints: list = field(default_factory=list)   # names of margins within tolerance of 0
     active_bounds: list = field(default_factory=list)        # (index, "low" | "high")
 
@@ -172,11 +173,13 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
     screening = (len(starts) - 1) * int(start_evaluations or 0)
     sequence(starts[0], initial_step, max(max_evaluations - screening, n_min))
     main = rank_key(*best()[1:])
+    screened = 0
     for start in starts[1:]:
         if max_evaluations - len(seen) < n_min:
             break
         message = str(cobyla(start, initial_step, min(int(start_evaluations), max_evaluations - len(seen))).message)
         runs += 1
+        screened += 1
     if rank_key(*best()[1:]) < main and max_evaluations - len(seen) >= n_min:
         sequence(best()[0], initial_step * restart_shrink, max_evaluations)   # polish the better basin
     best_u, best_f, best_m = best()
@@ -184,4 +187,4 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
     bounds = [(k, "low") for k in range(d) if best_u[k] <= active_tolerance] + \
              [(k, "high") for k in range(d) if best_u[k] >= 1.0 - active_tolerance]
     return LocalResult(best_u, float(best_f), np.asarray(best_m, dtype=float), float(f0), len(seen), message,
-                       runs, active, sorted(bounds))
+                       runs, 1 + screened, active, sorted(bounds))

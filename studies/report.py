@@ -200,8 +200,10 @@ def local_stage_text(search):
         return ""
     s = search.study
     names = search.space.names
-    lines = [f"Final local stage (COBYLA on the full simulation from the loop's verified best, {L.runs} run(s) "
-             f"from the best point so far, {L.evaluations} points incl. the start; last run: {L.message.strip()}): "
+    others = (f" and {L.starts - 1} other distinct verified design(s) (one screening run each)"
+              if L.starts > 1 else "")
+    lines = [f"Final local stage (COBYLA on the full simulation from the loop's verified best{others}, {L.runs} "
+             f"run(s) in all, {L.evaluations} points incl. the starts; last run: {L.message.strip()}): "
              f"{search.objective} {L.start_value:.6g} -> {L.value:.6g} "
              f"({100.0 * (L.value / L.start_value - 1.0):+.2f} %), {'feasible' if L.feasible else 'INFEASIBLE'}."]
     lines.append("Active constraints (margin within refine.active_tolerance of its limit): "
