@@ -53,7 +53,7 @@ import xarray as xr  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 from omegaconf import OmegaConf  # noqa: E402
 
-from sim.io import model_fingerprint, write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
+from sim.io import files_fingerprint, model_fingerprint, write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
 from studies.config import compose  # noqa: E402
 from studies.constraints import rank_key  # noqa: E402
 from studies.evaluate import STATUS, design_matrix  # noqa: E402
@@ -172,17 +172,14 @@ def run_fingerprint(cfg):
     """SHA-256 of what decides a run: the simulation code (:func:`sim.io.model_fingerprint`), the
     search code (``SEARCH_SOURCES``) and the composed study config; a stored run with another one
     is run again (a changed local stage or budget makes the old runs a different method)."""
-    h = hashlib.sha256(model_fingerprint().encode())
-    for folder in SEARCH_SOURCES:
-        for path in sorted((REPO / folder).rglob("*.py")):
-            h.update(str(path.relative_to(REPO)).encode())
-            h.update(path.read_bytes())
-    h.update(OmegaConf.to_yaml(cfg.study, resolve=True).encode())
-    return h.hexdigest()
+    search = files_fingerprint(REPO, [p for folder in SEARCH_SOURCES for p in sorted((REPO / folder).rglob("*.py"))])
+    study = OmegaConf.to_yaml(cfg.study, resolve=True)
+    return hashlib.sha256(f"{model_fingerprint()}\n{search}\n{study}".encode()).hexdigest()
 
 
-def run_one(method, seed, overrides, budget, n0, reference):
-    """One (method, seed) run in a fresh folder -> Dataset of its trace."""
+def run_one(method, seed, overrides, budget, n0, reference, fingerprint):
+    """One (method, seed) run in a fresh folder -> Dataset of its trace (``fingerprint``: its
+    :func:`run_fingerprint`, stored with it)."""
     with tempfile.TemporaryDirectory() as tmp:
         ov = list(overrides) + [f"study.seed={seed}"]
         search = DesignSearch(compose(ov), ov, out_dir=tmp, log=lambda msg: None)
@@ -208,7 +205,7 @@ def run_one(method, seed, overrides, budget, n0, reference):
                     {"long_name": "free design parameters of the simulated design (study units)"})},
         coords={"simulation": np.arange(1, len(trace.y) + 1), "parameter": list(names)},
         attrs={"method": method, "seed": seed, "budget": budget, "initial_design": n0,
-               "model_fingerprint": model_fingerprint(), "run_fingerprint": run_fingerprint(compose(overrides))})
+               "model_fingerprint": model_fingerprint(), "run_fingerprint": fingerprint})
 
 
 def summary(runs, reference, out):
@@ -296,13 +293,14 @@ def main(argv=None):
     methods = [m for m in args.methods if m != "gp" or importlib.util.find_spec("torch") is not None]
     if len(methods) < len(args.methods):
         print("gp: skipped (Optuna's GPSampler needs PyTorch: pip install -e \".[gp]\")")
+    fingerprint = run_fingerprint(cfg)
     runs = {}
     for method in methods:
         runs[method] = []
         for seed in range(args.seeds):
             file = out / f"{method}_seed{seed}.nc"
             ds = xr.load_dataset(file) if file.is_file() else None
-            if ds is not None and ds.attrs.get("run_fingerprint") != run_fingerprint(cfg):
+            if ds is not None and ds.attrs.get("run_fingerprint") != fingerprint:
                 print(f"{file}: computed by another version of the simulation or search code or study config "
                       f"(run_one's run_fingerprint): {'left out' if args.stored_only else 'run again'}", flush=True)
                 ds = None
@@ -310,7 +308,7 @@ def main(argv=None):
                 continue
             if ds is None:
                 t0 = time.perf_counter()
-                ds = run_one(method, seed, args.overrides, args.budget, n0, reference)
+                ds = run_one(method, seed, args.overrides, args.budget, n0, reference, fingerprint)
                 write_netcdf_atomic(ds, file)
                 hit = reach(ds.objective_value.values, ds.feasible.values, ds.elapsed.values, reference[0], TARGETS[0])
                 print(f"{method} seed {seed}: {ds.sizes['simulation']} simulations in {time.perf_counter() - t0:.0f} s; "

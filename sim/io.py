@@ -20,7 +20,7 @@ import numpy as np
 import xarray as xr
 from xarray.indexes import PandasIndex
 
-from sim._math.jit import source_fingerprint
+from sim._math.jit import files_fingerprint, source_fingerprint  # noqa: F401  (files_fingerprint: public here)
 from sim.physics import ratings
 from sim.physics.friction import COMPONENTS
 

@@ -37,14 +37,19 @@ def sim_sources():
     return sorted(SIM_ROOT.rglob("*.py"))
 
 
+def files_fingerprint(root, paths):
+    """SHA-256 hex digest over the paths (relative to ``root``) and bytes of ``paths``, in order."""
+    h = hashlib.sha256()
+    for path in paths:
+        h.update(str(Path(path).relative_to(root)).encode())
+        h.update(Path(path).read_bytes())
+    return h.hexdigest()
+
+
 @lru_cache(maxsize=1)
 def source_fingerprint():
     """SHA-256 hex digest over the relative paths and bytes of :func:`sim_sources`."""
-    h = hashlib.sha256()
-    for path in sim_sources():
-        h.update(str(path.relative_to(SIM_ROOT)).encode())
-        h.update(path.read_bytes())
-    return h.hexdigest()
+    return files_fingerprint(SIM_ROOT, sim_sources())
 
 
 def cache_dir():
