@@ -18,7 +18,7 @@ def race_forces(model, raw, race=1, tilt_deg=0.0):
     loads; the force of roller j on the ring is +q w n (n into the ring), summed as 3-D vectors
     over the azimuths (x = radial component times cos(psi)).
     """
-    from sim.physics.contact import slice_contact_meridian
+    from sim.physics.contact import Raceway, RingMotion, SliceContacts, slice_contact_meridian
 
     g = model.geometry
     a = g.arrays
@@ -28,12 +28,14 @@ def race_forces(model, raw, race=1, tilt_deg=0.0):
     for j in range(g.Z):
         psi = 2 * np.pi * j / g.Z
         if race == 0:
-            slice_contact_meridian(a["x"], a["rho"], 1, raw["poses"][j], g.alpha, g.Dpw, a["race_kind"][0],
-                                   a["race_par"][0], 0.0, 0.0, 0.0, d, nrm, pts)
+            slice_contact_meridian(a["x"], a["rho"], 1, raw["poses"][j], g.alpha, g.Dpw,
+                                   Raceway(a["race_kind"][0], a["race_par"][0]), RingMotion(0.0, 0.0, 0.0),
+                                   SliceContacts(d, nrm, pts))
         else:
-            slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw, a["race_kind"][1],
-                                   a["race_par"][1], raw["ring"][1] * np.cos(psi), raw["ring"][0],
-                                   np.radians(tilt_deg) * np.cos(psi), d, nrm, pts)
+            slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw,
+                                   Raceway(a["race_kind"][1], a["race_par"][1]),
+                                   RingMotion(raw["ring"][1] * np.cos(psi), raw["ring"][0],
+                                              np.radians(tilt_deg) * np.cos(psi)), SliceContacts(d, nrm, pts))
         load = raw["line_load"][j, race] * a["w"]
         Fx += np.sum(load * nrm[:, 0]) * np.cos(psi)
         Fz += np.sum(load * nrm[:, 1])

@@ -8,7 +8,7 @@ from collections import namedtuple
 import numpy as np
 
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
-from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, roelands_index
+from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
 from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, NC, NEV, ContactLoads, FilmState,
                                   FrictionCase, FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
@@ -119,9 +119,11 @@ class FrictionModel:
         self.par = FrictionParams(
             eta0=np.nan, alpha=float(lubricant.pressure_viscosity), Z=np.nan,
             pv_model=PRESSURE_VISCOSITY_MODELS[lubricant.pressure_viscosity_model], beta=np.nan,
-            traction_law=TRACTION_LAWS[str(friction["traction_law"])], tau_E=float(lubricant.eyring_stress),
-            tau0=float(lubricant.limiting_shear_stress_0), c_tau=float(lubricant.limiting_shear_coefficient),
-            G=float(lubricant.shear_modulus), mu_s=mu_s, v_s=v_s, hysteresis=hysteresis, mu_cage=mu_cage,
+            traction_law=TRACTION_LAWS[str(friction["traction_law"])],
+            rheology=FilmRheology(tau_E0=float(lubricant.eyring_stress),
+                                  tau_L0=float(lubricant.limiting_shear_stress_0),
+                                  c_tau=float(lubricant.limiting_shear_coefficient), G=float(lubricant.shear_modulus)),
+            solid=SolidFriction(mu_s=mu_s, v_s=v_s), hysteresis=hysteresis, mu_cage=mu_cage,
             sigma=sigma, B_ZH=B_ZH, C_ZH=C_ZH, sigma_rib=sigma_rib, B_ZH_rib=B_ZH_rib, C_ZH_rib=C_ZH_rib,
             film=FILM_FORMULAS[film], drag_k=np.nan, thermal=thermal, k_oil=float(lubricant.thermal_conductivity),
             k_steel=k_steel, kappa_steel=kappa_steel, dT_tol=dT_tol,
@@ -147,7 +149,8 @@ class FrictionModel:
         speed = BREAKAWAY_NOMINAL_SPEED if static else op.speed_rpm
         wi = float(angular_speed(speed))
         if static:   # no film, Coulomb friction wherever a contact slips; no drag (it goes as the speed squared)
-            par = par._replace(v_s=BREAKAWAY_SLIP_RESOLUTION * wi * 0.5 * g.Dpw, drag_k=0.0, boundary_only=True)
+            par = par._replace(solid=par.solid._replace(v_s=BREAKAWAY_SLIP_RESOLUTION * wi * 0.5 * g.Dpw), drag_k=0.0,
+                               boundary_only=True)
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), R_end=float(a["rib"][2]), x_end=float(a["rib"][0]),
@@ -168,7 +171,7 @@ class FrictionModel:
         film = FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (self.quad.wq.shape[0],)),
                          *(np.zeros(Z) for _ in range(4)))
         case = FrictionCase(frames, bearing, film, par, self.quad)
-        mu_ref = max(par.mu_s, par.c_tau)
+        mu_ref = max(par.solid.mu_s, par.rheology.c_tau)
         tol_M = self.tolerance * mu_ref * float(load.max()) * bearing.rho_m
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw      # at the pitch radius
         settings = KinematicsSettings(active, weight, tol_M, tol_T, self.max_iterations, self.traction_kinematics,

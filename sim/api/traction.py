@@ -130,8 +130,10 @@ def traction_curve(cfg, srr, *, p_h, u, R, temperature, law="traction_eyring", p
     lub = c["lubricant"]
     pv = ehl.PRESSURE_VISCOSITY_MODELS[lub.pressure_viscosity_model]
     z = ehl.roelands_index(c["eta0"], c["alpha_p"])
-    mu_s = float(cfg.friction.solid_friction_coefficient)
-    v_s = float(cfg.friction.solid_slip_velocity) * 1e3                # m/s -> mm/s
+    solid = ehl.SolidFriction(mu_s=float(cfg.friction.solid_friction_coefficient),
+                              v_s=float(cfg.friction.solid_slip_velocity) * 1e3)    # m/s -> mm/s
+    rheology = ehl.FilmRheology(tau_E0=float(lub.eyring_stress), tau_L0=float(lub.limiting_shear_stress_0),
+                                c_tau=float(lub.limiting_shear_coefficient), G=float(lub.shear_modulus))
     x, w = np.polynomial.legendre.leggauss(int(points))
     t = 0.25 * np.pi * (x + 1.0)                                       # (0, pi/2)
     w = 0.25 * np.pi * w
@@ -143,12 +145,7 @@ def traction_curve(cfg, srr, *, p_h, u, R, temperature, law="traction_eyring", p
         for tk, wk in zip(t, w):
             p = p_h * np.cos(tk)
             eta_p = ehl.pressure_viscosity(p, c["eta0"], c["alpha_p"], z, pv)
-            if law == "traction_eyring":
-                g = fn(p, v, c["h"], phi, eta_p, lub.eyring_stress, lub.limiting_shear_stress_0,
-                       lub.limiting_shear_coefficient, mu_s, v_s, lub.shear_modulus, c["t_transit"])
-            else:
-                g = fn(p, v, c["h"], phi, eta_p, lub.limiting_shear_stress_0, lub.limiting_shear_coefficient,
-                       mu_s, v_s, lub.shear_modulus, c["t_transit"])
+            g = fn(p, v, c["h"], phi, eta_p, rheology, solid, c["t_transit"])   # both laws: same arguments
             F += wk * np.cos(tk) * g * v                               # tau cos(t) dt, over (0, pi/2)
         out[k] = 4.0 / np.pi * F / p_h                                 # (2/pi) over (-pi/2, pi/2)
     return out

@@ -18,6 +18,8 @@ Kernel units: mm, rad. Profiles are given as (kind, params) arrays built by
 (thesis 8.2; equal, PCR_LB, for the symmetric osculation); the cavity is the intersection of the
 two disks, so the penetration is the larger of the two arcs' penetrations).
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim._math.jit import internal_kernel, kernel
@@ -26,6 +28,17 @@ from sim.geometry import RACE_LENS, RACE_LINE  # noqa: F401  (profile kinds, def
 # Penetration [mm] of a contact that does not exist: below any real penetration (the start of a
 # running maximum; the rib row of a roller without a rib, which then never bounds a Newton step).
 NO_CONTACT = -np.inf
+
+# Arguments of the slice contact kernels (numba-supported named tuples):
+# Raceway: one raceway profile in ring coordinates, kind (RACE_LINE or RACE_LENS) and par (6,) (module
+# docstring; sim.geometry.Geometry builds them);
+# RingMotion: rigid displacement of a ring in the roller's meridian plane, translation dr, dz [mm] and
+# rotation phi [rad] (world = Rot(phi) ring + translation; zeros for the fixed outer ring);
+# SliceContacts: what the kernels write per slice, d (N,) penetration [mm], n (N, 2 or 3) unit contact
+# normal into the ring and q (N, 2 or 3) contact point on the roller surface [mm].
+Raceway = namedtuple("Raceway", ["kind", "par"])
+RingMotion = namedtuple("RingMotion", ["dr", "dz", "phi"])
+SliceContacts = namedtuple("SliceContacts", ["d", "n", "q"])
 
 # Newton on the angle around a slice circle (slice_contact_3d), numerical choices:
 # ANGLE_FD_STEP [rad]: step of the central differences; ~eps^(1/4) balances truncation and
@@ -145,8 +158,7 @@ def roller_axes(alpha, theta):
 
 
 @kernel
-def slice_contact_meridian(x, rho, side, pose, alpha, Dpw, kind, par, ring_dr, ring_dz, ring_phi,
-                           d_out, n_out, q_out):
+def slice_contact_meridian(x, rho, side, pose, alpha, Dpw, raceway, ring, out):
     """Penetration, normal and contact point of every slice of one roller against one raceway.
 
     Parameters
@@ -159,18 +171,18 @@ def slice_contact_meridian(x, rho, side, pose, alpha, Dpw, kind, par, ring_dr, r
         Roller shift along its axis xi [mm], radial shift eta along v [mm], tilt theta [rad].
     alpha, Dpw : float
         Roller-axis angle [rad], pitch diameter [mm].
-    kind, par :
+    raceway : Raceway
         Raceway profile in ring coordinates (module docstring).
-    ring_dr, ring_dz, ring_phi : float
-        Rigid displacement of the ring in this meridian plane: translation [mm] and rotation
-        [rad] (world = Rot(phi) ring + translation).
-    d_out : ndarray (N,)
-        Penetrations [mm] (written).
-    n_out : ndarray (N, 2)
-        Unit contact normals into the ring, world (r, z) (written).
-    q_out : ndarray (N, 2)
-        Contact points on the roller surface, world (r, z) [mm] (written); thesis (5.11).
+    ring : RingMotion
+        Rigid displacement of the ring in this meridian plane: translation dr, dz [mm] and
+        rotation phi [rad] (world = Rot(phi) ring + translation).
+    out : SliceContacts (written)
+        d (N,): penetrations [mm]; n (N, 2): unit contact normals into the ring, world (r, z);
+        q (N, 2): contact points on the roller surface, world (r, z) [mm], thesis (5.11).
     """
+    kind, par = raceway
+    ring_dr, ring_dz, ring_phi = ring
+    d_out, n_out, q_out = out
     ur, uz, vr, vz = roller_axes(alpha, pose[2])
     sa = np.sin(alpha)
     ca = np.cos(alpha)
@@ -192,22 +204,23 @@ def slice_contact_meridian(x, rho, side, pose, alpha, Dpw, kind, par, ring_dr, r
 
 
 @internal_kernel
-def _surface_distance_3d(px, py, pz, ax, ay, az, ox, oy, oz, kind, par):
-    """Penetration of a 3-D point into a raceway of revolution about axis a through o."""
-    dx = px - ox
-    dy = py - oy
-    dz = pz - oz
+def _surface_distance_3d(px, py, pz, ring_origin, ring_axis, raceway):
+    """Penetration of a 3-D point (px, py, pz) into a raceway of revolution about the unit axis
+    ``ring_axis`` through ``ring_origin``, and the normal's (r, z) components in ring coordinates."""
+    ax, ay, az = ring_axis[0], ring_axis[1], ring_axis[2]
+    dx = px - ring_origin[0]
+    dy = py - ring_origin[1]
+    dz = pz - ring_origin[2]
     zz = dx * ax + dy * ay + dz * az
     rx = dx - zz * ax
     ry = dy - zz * ay
     rz = dz - zz * az
     rr = np.sqrt(rx * rx + ry * ry + rz * rz)
-    return race_penetration(rr, zz, kind, par)
+    return race_penetration(rr, zz, raceway[0], raceway[1])
 
 
 @kernel
-def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kind, par,
-                     d_out, p_out, n_out):
+def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, raceway, out):
     """Slice contact for a roller in any pose (shift, radial, tilt, skew), 3-D.
 
     For each slice, the point of the slice circle (centre c + x a, radius rho, in the plane
@@ -228,12 +241,13 @@ def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kin
         Start direction, roughly towards the raceway, normal to ``axis`` (normalised here).
     ring_origin, ring_axis : ndarray (3,)
         A point on the ring axis and its unit direction (the ring's own z) [mm, 1].
-    kind, par :
+    raceway : Raceway
         Raceway profile in the ring's (r, z) coordinates.
-    d_out : ndarray (N,)
-        Penetration [mm]. p_out : (N, 3) contact point on the roller [mm].
-        n_out : (N, 3) unit normal into the ring.
+    out : SliceContacts (written)
+        d (N,): penetration [mm]; n (N, 3): unit normal into the ring; q (N, 3): contact point
+        on the roller [mm].
     """
+    d_out, n_out, p_out = out
     # orthonormal basis (e1, e2) of the slice plane, e1 along side_dir
     s = side_dir[0] * axis[0] + side_dir[1] * axis[1] + side_dir[2] * axis[2]
     e1x = side_dir[0] - s * axis[0]
@@ -246,19 +260,19 @@ def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kin
     e2x = axis[1] * e1z - axis[2] * e1y
     e2y = axis[2] * e1x - axis[0] * e1z
     e2z = axis[0] * e1y - axis[1] * e1x
+    e1 = (e1x, e1y, e1z)
+    e2 = (e2x, e2y, e2z)
     h = ANGLE_FD_STEP
     for k in range(x.shape[0]):
         bx = center[0] + x[k] * axis[0]
         by = center[1] + x[k] * axis[1]
         bz = center[2] + x[k] * axis[2]
+        base = (bx, by, bz)
         t = 0.0
         for it in range(ANGLE_MAX_ITER):
-            fm = _pen_on_circle(t - h, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
-                                ring_origin, ring_axis, kind, par)
-            f0 = _pen_on_circle(t, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
-                                ring_origin, ring_axis, kind, par)
-            fp = _pen_on_circle(t + h, bx, by, bz, rho[k], e1x, e1y, e1z, e2x, e2y, e2z,
-                                ring_origin, ring_axis, kind, par)
+            fm = _pen_on_circle(t - h, base, rho[k], e1, e2, ring_origin, ring_axis, raceway)
+            f0 = _pen_on_circle(t, base, rho[k], e1, e2, ring_origin, ring_axis, raceway)
+            fp = _pen_on_circle(t + h, base, rho[k], e1, e2, ring_origin, ring_axis, raceway)
             g1 = (fp - fm) / (2.0 * h)
             g2 = (fp - 2.0 * f0 + fm) / (h * h)
             if g2 >= 0.0:  # not a maximum locally: gradient step
@@ -277,8 +291,7 @@ def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kin
         px = bx + rho[k] * (c * e1x + sn * e2x)
         py = by + rho[k] * (c * e1y + sn * e2y)
         pz = bz + rho[k] * (c * e1z + sn * e2z)
-        d, nr, nz = _surface_distance_3d(px, py, pz, ring_axis[0], ring_axis[1], ring_axis[2],
-                                         ring_origin[0], ring_origin[1], ring_origin[2], kind, par)
+        d, nr, nz = _surface_distance_3d(px, py, pz, ring_origin, ring_axis, raceway)
         # normal back to 3-D: radial unit of the point's meridian plane and the ring axis
         dx = px - ring_origin[0]
         dy = py - ring_origin[1]
@@ -298,14 +311,15 @@ def slice_contact_3d(center, axis, x, rho, side_dir, ring_origin, ring_axis, kin
 
 
 @internal_kernel
-def _pen_on_circle(t, bx, by, bz, rho, e1x, e1y, e1z, e2x, e2y, e2z, ring_origin, ring_axis, kind, par):
+def _pen_on_circle(t, base, rho, e1, e2, ring_origin, ring_axis, raceway):
+    """Penetration [mm] of the point at angle t [rad] on the slice circle base + rho (cos t e1 +
+    sin t e2) (base, e1, e2: 3-tuples, mm and unit vectors) into the raceway."""
     c = np.cos(t)
     s = np.sin(t)
-    px = bx + rho * (c * e1x + s * e2x)
-    py = by + rho * (c * e1y + s * e2y)
-    pz = bz + rho * (c * e1z + s * e2z)
-    d, nr, nz = _surface_distance_3d(px, py, pz, ring_axis[0], ring_axis[1], ring_axis[2],
-                                     ring_origin[0], ring_origin[1], ring_origin[2], kind, par)
+    px = base[0] + rho * (c * e1[0] + s * e2[0])
+    py = base[1] + rho * (c * e1[1] + s * e2[1])
+    pz = base[2] + rho * (c * e1[2] + s * e2[2])
+    d, nr, nz = _surface_distance_3d(px, py, pz, ring_origin, ring_axis, raceway)
     return d
 
 

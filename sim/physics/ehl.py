@@ -29,6 +29,8 @@ modulus of the EHL formulas is Hamrock's ``E' = 2 E*`` (E* of :func:`sim.physics
   mid-film temperature rise of Couette heating, and the mean flash temperature of the surfaces
   under a moving band heat source (Jaeger 1942, Blok 1937 partition).
 """
+from collections import namedtuple
+
 import numpy as np
 
 from sim._math.jit import internal_kernel, kernel
@@ -42,6 +44,17 @@ PRESSURE_VISCOSITY_MODELS = {"barus": PV_BARUS, "roelands": PV_ROELANDS}
 #: Roelands (1966) constants: eta_inf = 6.31e-5 Pa s [MPa s] and p_R = 1/5.1e-9 Pa [MPa].
 ROELANDS_ETA_INF = 6.31e-11
 ROELANDS_P_R = 196.1
+
+# Parameters of the traction laws (numba-supported named tuples; sim.api.friction_model.FrictionModel
+# builds them once from the lubricant and friction config):
+# FilmRheology: tau_E0, Eyring stress [MPa] (traction_eyring; unused by traction_per_speed); tau_L0,
+# limiting shear stress at zero pressure [MPa], and c_tau, its pressure coefficient [1]
+# (tau_L = tau_L0 + c_tau p, Bair & Winer 1979); G, elastic shear modulus of the film [MPa]
+# (Maxwell part, Johnson & Tevaarwerk 1977).
+FilmRheology = namedtuple("FilmRheology", ["tau_E0", "tau_L0", "c_tau", "G"])
+# SolidFriction: mu_s, solid (asperity) friction coefficient [1]; v_s, sliding speed at which it is
+# developed (tanh regularisation) [mm/s].
+SolidFriction = namedtuple("SolidFriction", ["mu_s", "v_s"])
 
 
 @kernel
@@ -367,11 +380,11 @@ def viscosity_at_pressure(eta, log_ratio, term, model):
 
 
 @kernel
-def traction_per_speed(p, v, h, phi, eta_p, tau0, c_tau, mu_s, v_s, G, t_transit):
+def traction_per_speed(p, v, h, phi, eta_p, rheology, solid, t_transit):
     """Traction stress over sliding speed, tau(p, |v|) / |v| [MPa s/mm], thesis (5.17).
 
     tau = phi mu_s p tanh(|v|/v_s) + (1 - phi) tau_lim tanh(k |v| / tau_lim) with
-    tau_lim = tau0 + c_tau p (Bair & Winer 1979) and the low-slip slope of a Maxwell fluid
+    tau_lim = tau_L0 + c_tau p (Bair & Winer 1979) and the low-slip slope of a Maxwell fluid
     sheared for the transit time t of a contact, 1/k = h (1/eta(p) + 1/(G t)) (Johnson &
     Tevaarwerk 1977). The traction on a surface is -tau v/|v|: the returned ratio times -v.
 
@@ -387,30 +400,33 @@ def traction_per_speed(p, v, h, phi, eta_p, tau0, c_tau, mu_s, v_s, G, t_transit
         Solid load share (5.16) [1].
     eta_p : float
         Film viscosity at the pressure p (:func:`pressure_viscosity`) [MPa s].
-    tau0 [MPa], c_tau [1], mu_s [1], v_s [mm/s], G [MPa] :
-        Lubricant and boundary-friction parameters.
+    rheology : FilmRheology
+        tau_L0 [MPa], c_tau [1], G [MPa] of the film (tau_E0 is not used by this law).
+    solid : SolidFriction
+        mu_s [1], v_s [mm/s] of the asperity contacts.
     t_transit : float
         Transit time of the lubricant through the contact, contact length / entrainment speed [s].
     """
-    g = traction_solid(p, v, phi, mu_s, v_s)
+    g = traction_solid(p, v, phi, solid)
     if phi < 1.0 and h > 0.0:
-        g += film_traction_maxwell(p, v, h, phi, eta_p, tau0, c_tau, G, t_transit)
+        g += film_traction_maxwell(p, v, h, phi, eta_p, rheology, t_transit)
     return g
 
 
 @kernel
-def traction_solid(p, v, phi, mu_s, v_s):
+def traction_solid(p, v, phi, solid):
     """Solid (asperity) part of the traction over sliding speed, phi mu_s p tanh(|v|/v_s)/|v|
-    [MPa s/mm], of :func:`traction_per_speed` and :func:`traction_eyring` (same arguments)."""
-    return phi * mu_s * p * _tanh_over_x(v / v_s) / v_s
+    [MPa s/mm], of :func:`traction_per_speed` and :func:`traction_eyring` (same arguments;
+    solid: :data:`SolidFriction`)."""
+    return phi * solid.mu_s * p * _tanh_over_x(v / solid.v_s) / solid.v_s
 
 
 @kernel
-def film_traction_maxwell(p, v, h, phi, eta_p, tau0, c_tau, G, t_transit):
+def film_traction_maxwell(p, v, h, phi, eta_p, rheology, t_transit):
     """Film part (1 - phi) tau_lim tanh(k |v|/tau_lim)/|v| of :func:`traction_per_speed` [MPa s/mm]
     (same arguments; h > 0)."""
-    tau_lim = tau0 + c_tau * p
-    k = 1.0 / (h * (1.0 / eta_p + 1.0 / (G * t_transit)))   # [MPa s/mm]
+    tau_lim = rheology.tau_L0 + rheology.c_tau * p
+    k = 1.0 / (h * (1.0 / eta_p + 1.0 / (rheology.G * t_transit)))   # [MPa s/mm]
     return (1.0 - phi) * k * _tanh_over_x(k * v / tau_lim)
 
 
@@ -513,11 +529,11 @@ def eyring_maxwell_stress(S, De):
 
 
 @kernel
-def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_transit):
+def traction_eyring(p, v, h, phi, eta_p, rheology, solid, t_transit):
     """Traction stress over sliding speed of an Eyring (Maxwell-Eyring) film, tau/|v| [MPa s/mm].
 
-    Drop-in alternative to :func:`traction_per_speed` (same arguments in the same places, the
-    Eyring stress ``tau_E0`` added; same return quantity, the traction on a surface is the
+    Drop-in alternative to :func:`traction_per_speed` (the same arguments, of which this law
+    also reads the Eyring stress ``rheology.tau_E0``; same return quantity, the traction on a surface is the
     returned ratio times -v):
 
         tau = phi mu_s p tanh(|v|/v_s) + (1 - phi) tau_L tanh(tau_M / tau_L),
@@ -553,12 +569,13 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
         Solid load share (5.16) [1].
     eta_p : float
         Film viscosity at the pressure p [MPa s] (:func:`pressure_viscosity`).
-    tau_E0 : float
-        Eyring stress [MPa], > 0; mineral oils 2-10 MPa (Johnson & Tevaarwerk 1977; Evans &
-        Johnson 1986), ~ 2 Lambda/alpha after Bair & Winer.
-    tau_L0 [MPa], c_tau [1], mu_s [1], v_s [mm/s], G [MPa] :
-        Limiting shear stress at zero pressure and its pressure slope, solid friction
-        coefficient and its regularising speed, elastic shear modulus of the film.
+    rheology : FilmRheology
+        tau_E0, the Eyring stress [MPa], > 0: mineral oils 2-10 MPa (Johnson & Tevaarwerk 1977;
+        Evans & Johnson 1986), ~ 2 Lambda/alpha after Bair & Winer; tau_L0 [MPa] and c_tau [1],
+        the limiting shear stress at zero pressure and its pressure slope; G [MPa], the elastic
+        shear modulus of the film.
+    solid : SolidFriction
+        mu_s [1], v_s [mm/s]: solid friction coefficient and its regularising speed.
     t_transit : float
         Transit time through the contact, contact length / entrainment speed [s] (inf: no
         elastic part).
@@ -568,18 +585,19 @@ def traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, mu_s, v_s, G, t_
     float
         tau/|v| [MPa s/mm], finite at v = 0 (its limit).
     """
-    g = traction_solid(p, v, phi, mu_s, v_s)
+    g = traction_solid(p, v, phi, solid)
     if phi < 1.0 and h > 0.0:
-        g += film_traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, G, t_transit)
+        g += film_traction_eyring(p, v, h, phi, eta_p, rheology, t_transit)
     return g
 
 
 @internal_kernel
-def film_traction_eyring(p, v, h, phi, eta_p, tau_E0, tau_L0, c_tau, G, t_transit):
+def film_traction_eyring(p, v, h, phi, eta_p, rheology, t_transit):
     """Film part (1 - phi) tau_L tanh(tau_M/tau_L)/|v| of :func:`traction_eyring` [MPa s/mm]
     (same arguments; h > 0)."""
-    tau_L = tau_L0 + c_tau * p
-    De = eta_p / (G * t_transit)
+    tau_E0 = rheology.tau_E0
+    tau_L = rheology.tau_L0 + rheology.c_tau * p
+    De = eta_p / (rheology.G * t_transit)
     S = eta_p * v / (h * tau_E0)
     x = eyring_maxwell_stress(S, De)[0]
     r = x / S if S > 0.0 else 1.0 / (1.0 + De)      # tau_M/(tau_E0 S) = tau_M h/(eta |v|)

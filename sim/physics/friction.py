@@ -134,12 +134,8 @@ FrictionParams = namedtuple("FrictionParams", [
     "pv_model",     # int, pressure-viscosity law: sim.physics.ehl.PV_BARUS or PV_ROELANDS
     "beta",         # 1/K, temperature-viscosity coefficient at the oil temperature (per case)
     "traction_law", # int, film traction law: TRACTION_EYRING or TRACTION_NEWTON_LIMITED (module constants)
-    "tau_E",        # MPa, Eyring stress tau_E0 of the Maxwell-Eyring law (sim.physics.ehl.traction_eyring)
-    "tau0",         # MPa, limiting shear stress at zero pressure
-    "c_tau",        # 1, pressure coefficient of the limiting shear stress
-    "G",            # MPa, elastic shear modulus of the film (Maxwell traction)
-    "mu_s",         # 1, solid (asperity) friction coefficient
-    "v_s",          # mm/s, slip at which the solid friction is developed (tanh regularisation)
+    "rheology",     # sim.physics.ehl.FilmRheology: Eyring stress, limiting shear stress law, film shear modulus
+    "solid",        # sim.physics.ehl.SolidFriction: asperity friction coefficient and its regularising slip
     "hysteresis",   # 1, elastic hysteresis loss factor of the steel
     "mu_cage",      # 1, roller / cage pocket friction coefficient
     "sigma",        # mm, composite roughness of the raceway contacts
@@ -175,9 +171,8 @@ TRACTION_LAWS = {"eyring": TRACTION_EYRING, "newton_limited": TRACTION_NEWTON_LI
 def _traction(par, p, v, h, phi, eta_p, t_transit):
     """Traction stress over sliding speed tau/|v| [MPa s/mm] of the configured film law, thesis (5.17)."""
     if par.traction_law == TRACTION_EYRING:
-        return traction_eyring(p, v, h, phi, eta_p, par.tau_E, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G,
-                               t_transit)
-    return traction_per_speed(p, v, h, phi, eta_p, par.tau0, par.c_tau, par.mu_s, par.v_s, par.G, t_transit)
+        return traction_eyring(p, v, h, phi, eta_p, par.rheology, par.solid, t_transit)
+    return traction_per_speed(p, v, h, phi, eta_p, par.rheology, par.solid, t_transit)
 
 
 @internal_kernel
@@ -185,8 +180,8 @@ def _film_traction(par, p, v, h, phi, eta_p, t_transit):
     """The film part of :func:`_traction` (h > 0, phi < 1): :func:`_traction` is the solid part
     (sim.physics.ehl.traction_solid) plus this."""
     if par.traction_law == TRACTION_EYRING:
-        return film_traction_eyring(p, v, h, phi, eta_p, par.tau_E, par.tau0, par.c_tau, par.G, t_transit)
-    return film_traction_maxwell(p, v, h, phi, eta_p, par.tau0, par.c_tau, par.G, t_transit)
+        return film_traction_eyring(p, v, h, phi, eta_p, par.rheology, t_transit)
+    return film_traction_maxwell(p, v, h, phi, eta_p, par.rheology, t_transit)
 
 
 # The solved bearing as the friction kernels read it (numba-supported named tuple).
@@ -308,8 +303,16 @@ def _heat_flux(theta, hk, phik, npts, q_sol, par, pts):
     return q_tot - q_sol, q_tot
 
 
+# A contact whose film temperature :func:`_viscosity_factor` solves (numba-supported named tuple):
+# p0, Hertz pressure (line slice) or mean pressure (point contact) [MPa]; b, Hertz half-width of a
+# line slice [mm] (0 for the point contact of the rib); h, film [mm]; phi, solid load share [1]; ws,
+# spin about the contact normal [rad/s]; half_length, half length of the contact along the rolling
+# direction [mm]; U1, U2, surface speeds of roller and ring [mm/s] (sliding speed U1 - U2).
+HeatedContact = namedtuple("HeatedContact", ["p0", "b", "h", "phi", "ws", "half_length", "U1", "U2"])
+
+
 @kernel
-def _viscosity_factor(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad):
+def _viscosity_factor(contact, par, quad):
     """Thermal reduction of the film viscosity in the traction, theta = exp(-beta dT) [1].
 
     dT is the film temperature of the contact's own shear heating: the flash temperature of the
@@ -322,32 +325,21 @@ def _viscosity_factor(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad):
     shear) is not reduced; the Maxwell transit-time term is left out of the heat estimate (it
     only matters at microslip, where the heat is negligible).
 
-    Parameters
-    ----------
-    p0k : float
-        Hertz pressure (line slice) or mean pressure (point contact) [MPa].
-    bk : float
-        Hertz half-width of a line slice [mm]; 0 for the point contact of the rib.
-    hk, phik : float
-        Film [mm] and solid load share [1].
-    ws : float
-        Spin about the contact normal [rad/s].
-    half_length : float
-        Half length of the contact along the rolling direction [mm].
-    U1, U2 : float
-        Surface speeds of roller and ring [mm/s]; sliding speed U1 - U2.
+    contact: :data:`HeatedContact`; par: :data:`FrictionParams`; quad: :data:`WidthQuadrature`.
     """
     pts = np.empty((NWP, quad.wq.shape[0]))
-    npts = _width_points(p0k, bk, par, quad, pts)
-    return _viscosity_factor_at(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad, npts, pts)
+    npts = _width_points(contact.p0, contact.b, par, quad, pts)
+    return _viscosity_factor_at(contact, par, quad, npts, pts)
 
 
 @internal_kernel
-def _viscosity_factor_at(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad, npts, pts):
+def _viscosity_factor_at(contact, par, quad, npts, pts):
     """:func:`_viscosity_factor` on the contact's ``npts`` width points ``pts`` (NWP, len(quad.wq)),
     pressures filled by :func:`_width_points` (:func:`lubrication_state` reuses their pressure
     terms for the film viscosity); their speeds, weights and solid traction are written here,
     once for all trial temperatures."""
+    bk, hk, phik, ws, half_length, U1, U2 = (contact.b, contact.h, contact.phi, contact.ws, contact.half_length,
+                                             contact.U1, contact.U2)
     if not par.thermal or hk <= 0.0:
         return 1.0
     beta = par.beta
@@ -365,8 +357,8 @@ def _viscosity_factor_at(p0k, bk, hk, phik, ws, half_length, U1, U2, par, quad, 
             weight = 1.0
         pts[WP_V, i] = v
         pts[WP_W, i] = weight
-        pts[WP_SOLID, i] = traction_solid(p, v, phik, par.mu_s, par.v_s)
-        q_sol += weight * phik * par.mu_s * p * v * np.tanh(v / par.v_s)
+        pts[WP_SOLID, i] = traction_solid(p, v, phik, par.solid)
+        q_sol += weight * phik * par.solid.mu_s * p * v * np.tanh(v / par.solid.v_s)
 
     def rise(dT):
         q_film, q_tot = _heat_flux(np.exp(-beta * dT), hk, phik, npts, q_sol, par, pts)
@@ -479,8 +471,8 @@ def lubrication_state(wR, wc, wi, active, case):
                 Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
                 ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
                 npts = _width_points(p0[j, s, k], bk, par, quad, pts)
-                theta = _viscosity_factor_at(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, par, quad, npts,
-                                             pts)
+                theta = _viscosity_factor_at(HeatedContact(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2), par,
+                                             quad, npts, pts)
                 eta = par.eta0 * theta
                 log_ratio = viscosity_log_ratio(eta, par.pv_model)
                 for i in range(npts):
@@ -503,7 +495,7 @@ def lubrication_state(wR, wc, wi, active, case):
             hrib = film_point(u, Qrib[j], R_end, R_end, par.eta0, par.alpha, Ep)
             Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
             npts = _width_points(prib, 0.0, par, quad, pts)
-            theta = _viscosity_factor_at(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2, par, quad, npts, pts)
+            theta = _viscosity_factor_at(HeatedContact(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2), par, quad, npts, pts)
             film.prib[j] = prib
             film.hrib[j] = hrib
             film.Phirib[j] = Phirib

@@ -33,8 +33,8 @@ import numpy as np
 from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import solve_dense
 from sim.geometry import RACE_LENS
-from sim.physics.contact import (NO_CONTACT, hertz_point_load, lens_penetration, roller_axes, slice_contact_meridian,
-                                 to_ring)
+from sim.physics.contact import (NO_CONTACT, Raceway, RingMotion, SliceContacts, hertz_point_load, lens_penetration,
+                                 roller_axes, slice_contact_meridian, to_ring)
 from sim.physics.elasticity import INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, independent_slice_loads
 
 NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'), theta, delta_a, delta_r
@@ -139,12 +139,14 @@ def roller_frames(pose, ring, phi, cpsi, bearing, d, frames):
         # side is a run-time value: one signature of slice_contact_meridian
         side = 1 - 2 * s
         if s == 0:
-            slice_contact_meridian(bearing.x, bearing.rho, side, pose, alpha, bearing.Dpw, bearing.race_kind[0],
-                                   bearing.race_par[0], 0.0, 0.0, 0.0, d[:n], frames.Nrm[0], frames.X[0])
+            slice_contact_meridian(bearing.x, bearing.rho, side, pose, alpha, bearing.Dpw,
+                                   Raceway(bearing.race_kind[0], bearing.race_par[0]), RingMotion(0.0, 0.0, 0.0),
+                                   SliceContacts(d[:n], frames.Nrm[0], frames.X[0]))
         else:
-            slice_contact_meridian(bearing.x, bearing.rho, side, pose, alpha, bearing.Dpw, bearing.race_kind[1],
-                                   bearing.race_par[1], ring[1] * cpsi, ring[0], phi, d[n:2 * n], frames.Nrm[1],
-                                   frames.X[1])
+            slice_contact_meridian(bearing.x, bearing.rho, side, pose, alpha, bearing.Dpw,
+                                   Raceway(bearing.race_kind[1], bearing.race_par[1]),
+                                   RingMotion(ring[1] * cpsi, ring[0], phi),
+                                   SliceContacts(d[n:2 * n], frames.Nrm[1], frames.X[1]))
     rib = bearing.rib
     ex = rib[0] + rib[2] * rib[3]
     ey = rib[2] * rib[4]

@@ -19,7 +19,8 @@ import pytest
 import sim
 from sim.api.simulation import build_model
 from sim.api.bearing_model import roller_shift_relative_to_inner_ring
-from sim.physics.contact import contact_modulus, hertz_line_half_width, slice_contact_meridian
+from sim.physics.contact import (Raceway, RingMotion, SliceContacts, contact_modulus, hertz_line_half_width,
+                                 slice_contact_meridian)
 from tests.helpers import case, race_forces, roller_residuals
 
 # kappa per race and point, all different, tighter at the small end (as the tests below need)
@@ -41,7 +42,8 @@ def penetration(g, race, x, pose=(0.0, 0.0, 0.0)):
     d, nrm, pts = np.empty(len(x)), np.empty((len(x), 2)), np.empty((len(x), 2))
     a = g.arrays
     slice_contact_meridian(x, g.roller_radius(x), 1 - 2 * race, np.asarray(pose, dtype=float), g.alpha, g.Dpw,
-                           a["race_kind"][race], a["race_par"][race], 0.0, 0.0, 0.0, d, nrm, pts)
+                           Raceway(a["race_kind"][race], a["race_par"][race]), RingMotion(0.0, 0.0, 0.0),
+                           SliceContacts(d, nrm, pts))
     return d
 
 

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 import sim
-from sim.physics.contact import slice_contact_3d, slice_contact_meridian
+from sim.physics.contact import Raceway, RingMotion, SliceContacts, slice_contact_3d, slice_contact_meridian
 from sim.api.simulation import build_model
 
 
@@ -36,8 +36,9 @@ def test_untilted_penetration_is_zero_at_nominal_contact(bearing):
     nrm = np.empty((n, 2))
     pts = np.empty((n, 2))
     for side, s in ((1, 0), (-1, 1)):
-        slice_contact_meridian(a["x"], a["rho"], side, np.zeros(3), g.alpha, g.Dpw, a["race_kind"][s],
-                               a["race_par"][s], 0.0, 0.0, 0.0, d, nrm, pts)
+        raceway = Raceway(a["race_kind"][s], a["race_par"][s])
+        slice_contact_meridian(a["x"], a["rho"], side, np.zeros(3), g.alpha, g.Dpw, raceway, RingMotion(0.0, 0.0, 0.0),
+                               SliceContacts(d, nrm, pts))
         assert d.max() <= 1e-9
         if bearing == "trb_32208":
             from sim.geometry import log_crown_drop
@@ -45,8 +46,8 @@ def test_untilted_penetration_is_zero_at_nominal_contact(bearing):
         # a radial push by e along v gives penetration e * (n . v) at every slice, closed form
         e = 1e-3
         d2 = np.empty(n)
-        slice_contact_meridian(a["x"], a["rho"], side, np.array([0.0, side * e, 0.0]), g.alpha, g.Dpw,
-                               a["race_kind"][s], a["race_par"][s], 0.0, 0.0, 0.0, d2, nrm, pts)
+        slice_contact_meridian(a["x"], a["rho"], side, np.array([0.0, side * e, 0.0]), g.alpha, g.Dpw, raceway,
+                               RingMotion(0.0, 0.0, 0.0), SliceContacts(d2, nrm, pts))
         nv = nrm[:, 0] * np.cos(g.alpha) + nrm[:, 1] * np.sin(g.alpha)
         np.testing.assert_allclose(d2 - d, e * side * nv, atol=2e-9)
 
@@ -62,16 +63,16 @@ def test_3d_kernel_equals_meridian_without_skew_and_loses_depth_with_skew(bearin
     d_m = np.empty(n)
     nrm = np.empty((n, 2))
     pts = np.empty((n, 2))
-    slice_contact_meridian(a["x"], a["rho"], 1, pose, g.alpha, g.Dpw, a["race_kind"][0], a["race_par"][0],
-                           0.0, 0.0, 0.0, d_m, nrm, pts)
+    raceway = Raceway(a["race_kind"][0], a["race_par"][0])
+    slice_contact_meridian(a["x"], a["rho"], 1, pose, g.alpha, g.Dpw, raceway, RingMotion(0.0, 0.0, 0.0),
+                           SliceContacts(d_m, nrm, pts))
     origin, zaxis = np.zeros(3), np.array([0.0, 0.0, 1.0])
     for skew in (0.0, 2e-3):
         centre, axis, v = _pose_3d(g, pose, skew)
         d3 = np.empty(n)
         p3 = np.empty((n, 3))
         n3 = np.empty((n, 3))
-        slice_contact_3d(centre, axis, a["x"], a["rho"], v, origin, zaxis, a["race_kind"][0], a["race_par"][0],
-                         d3, p3, n3)
+        slice_contact_3d(centre, axis, a["x"], a["rho"], v, origin, zaxis, raceway, SliceContacts(d3, n3, p3))
         if skew == 0.0:
             np.testing.assert_allclose(d3, d_m, atol=1e-9)
             np.testing.assert_allclose(n3[:, [0, 2]], nrm, atol=1e-7)

@@ -300,7 +300,8 @@ TR = dict(h=0.5e-3, eta0=0.05e-6, alpha=0.021, tau0=2.0, c=0.06, mu_s=0.1, v_s=1
 def _tau(p, v, phi, **kw):
     a = {**TR, **kw}
     eta_p = ehl.pressure_viscosity(p, a["eta0"], a["alpha"], 0.0, ehl.PV_BARUS)
-    g = ehl.traction_per_speed(p, v, a["h"], phi, eta_p, a["tau0"], a["c"], a["mu_s"], a["v_s"], a["G"], a["t"])
+    rheology = ehl.FilmRheology(np.inf, a["tau0"], a["c"], a["G"])     # tau_E0: not read by this law
+    g = ehl.traction_per_speed(p, v, a["h"], phi, eta_p, rheology, ehl.SolidFriction(a["mu_s"], a["v_s"]), a["t"])
     return g * v
 
 
@@ -414,9 +415,10 @@ def _thermal_par(beta, k_oil, k_s, kappa_s):
     rigid film (G = 1e12 MPa), so the traction is eta(p) v / h exactly enough (relative error of
     tanh(x)/x below 1e-12 here)."""
     par = friction.FrictionParams(**{name: 0.0 for name in friction.FrictionParams._fields})
-    return par._replace(traction_law=friction.TRACTION_NEWTON_LIMITED, eta0=0.039e-6, alpha=0.021, pv_model=ehl.PV_BARUS, tau0=2.0, c_tau=1e6, G=1e12, mu_s=0.1,
-                        v_s=1.0, film=ehl.FILM_PAN_HAMROCK, thermal=True, beta=beta, k_oil=k_oil, k_steel=k_s,
-                        kappa_steel=kappa_s, dT_tol=1e-9)
+    return par._replace(traction_law=friction.TRACTION_NEWTON_LIMITED, eta0=0.039e-6, alpha=0.021,
+                        pv_model=ehl.PV_BARUS, rheology=ehl.FilmRheology(0.0, 2.0, 1e6, 1e12),
+                        solid=ehl.SolidFriction(0.1, 1.0), film=ehl.FILM_PAN_HAMROCK, thermal=True, beta=beta,
+                        k_oil=k_oil, k_steel=k_s, kappa_steel=kappa_s, dT_tol=1e-9)
 
 
 @pytest.mark.parametrize("line", [False, True])
@@ -442,15 +444,16 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
         # mean over y in (-b, b) = integral over t in (0, pi/2) of f(p0 cos t) cos t, y = b sin t
         A = quad(lambda s: eta0 * math.exp(alpha * p * math.cos(s)) * math.cos(s), 0.0, 0.5 * math.pi,
                  epsabs=0.0, epsrel=1e-13)[0] * v * v / h
-        theta = friction._viscosity_factor(p, half, h, 0.0, 0.0, half, U1, U2, par, rule)
+        theta = friction._viscosity_factor(friction.HeatedContact(p, half, h, 0.0, 0.0, half, U1, U2), par, rule)
     else:
         A = eta0 * math.exp(alpha * p) * v * v / h
-        theta = friction._viscosity_factor(p, 0.0, h, 0.0, 0.0, half, U1, U2, par, rule)
+        theta = friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2), par, rule)
     C = h / (8.0 * k_oil) + 4.0 / 3.0 * math.sqrt(2.0 * half * kappa_s / math.pi) / (k_s * (math.sqrt(U1) + math.sqrt(U2)))
     dT = lambertw(beta * C * A).real / beta
     assert 5.0 < dT < 200.0                  # a case where heating matters (rib of a TRB at 40 kN)
     assert -math.log(theta) / beta == pytest.approx(dT, rel=1e-7)
-    assert friction._viscosity_factor(p, 0.0, h, 0.0, 0.0, half, U1, U2, par._replace(thermal=False), rule) == 1.0
+    assert friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2),
+                                       par._replace(thermal=False), rule) == 1.0
 
 
 # ---------------------------------------------------------------------------------------------

@@ -34,11 +34,13 @@ TAU_L0, C_TAU = 2.0, 0.06
 MU_S, V_S = 0.1, 10.0
 G = 1000.0          # MPa
 NO_ELASTIC = 1e300  # s: transit time that switches the elastic (Maxwell) part off
+RHEOLOGY = ehl.FilmRheology(TAU_E, TAU_L0, C_TAU, G)
+SOLID = ehl.SolidFriction(MU_S, V_S)
 
 
 def fluid(v, eta=ETA_P, tau_E=TAU_E, G_=G, t=NO_ELASTIC, p=P, h=H, tau_L0=TAU_L0, c=C_TAU):
     """Film stress tau [MPa] of the law at sliding speed v [mm/s] (phi = 0)."""
-    return ehl.traction_eyring(p, v, h, 0.0, eta, tau_E, tau_L0, c, MU_S, V_S, G_, t) * v
+    return ehl.traction_eyring(p, v, h, 0.0, eta, ehl.FilmRheology(tau_E, tau_L0, c, G_), SOLID, t) * v
 
 
 def test_solver_converges_to_machine_precision_over_the_whole_range():
@@ -67,9 +69,9 @@ def test_linear_at_small_slip_with_slope_eta_over_h():
     + ...) (asinh series), so tau/v = eta/h to S^2/6. At S = 1e-6 the relative deviation is
     below 1e-12; at v = 0 the kernel returns the limit itself."""
     v = 1e-6 * H * TAU_E / ETA_P
-    slope = ehl.traction_eyring(P, v, H, 0.0, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, NO_ELASTIC)
+    slope = ehl.traction_eyring(P, v, H, 0.0, ETA_P, RHEOLOGY, SOLID, NO_ELASTIC)
     assert slope == pytest.approx(ETA_P / H, rel=1e-12)
-    assert ehl.traction_eyring(P, 0.0, H, 0.0, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, NO_ELASTIC) == \
+    assert ehl.traction_eyring(P, 0.0, H, 0.0, ETA_P, RHEOLOGY, SOLID, NO_ELASTIC) == \
         pytest.approx(ETA_P / H, rel=1e-15)
 
 
@@ -81,9 +83,9 @@ def test_low_slip_slope_is_the_maxwell_slope_of_traction_per_speed():
     t = 2.0 * 0.25 / 3000.0                                   # s: 2b/u, b = 0.25 mm, u = 3 m/s
     k = 1.0 / (H * (1.0 / ETA_P + 1.0 / (G * t)))
     for v in (0.0, 1e-7 * H * TAU_E / ETA_P):
-        g = ehl.traction_eyring(P, v, H, 0.0, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, t)
+        g = ehl.traction_eyring(P, v, H, 0.0, ETA_P, RHEOLOGY, SOLID, t)
         assert g == pytest.approx(k, rel=1e-12)
-        assert g == pytest.approx(ehl.traction_per_speed(P, v, H, 0.0, ETA_P, TAU_L0, C_TAU, MU_S, V_S, G, t),
+        assert g == pytest.approx(ehl.traction_per_speed(P, v, H, 0.0, ETA_P, RHEOLOGY, SOLID, t),
                                   rel=1e-12)
 
 
@@ -138,17 +140,17 @@ def test_never_above_the_newtonian_limited_law_and_equal_as_tau_E_grows():
     every slipping slice at tau_L under the Newtonian law, at 57 % of it under Eyring at 1 m/s."""
     t = 1e-4
     for v in np.logspace(-3, 4, 30):
-        new = ehl.traction_per_speed(P, v, H, 0.0, ETA_P, TAU_L0, C_TAU, MU_S, V_S, G, t)
-        eyr = ehl.traction_eyring(P, v, H, 0.0, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, t)
+        new = ehl.traction_per_speed(P, v, H, 0.0, ETA_P, RHEOLOGY, SOLID, t)
+        eyr = ehl.traction_eyring(P, v, H, 0.0, ETA_P, RHEOLOGY, SOLID, t)
         assert eyr <= new * (1 + 1e-12)
-        big = ehl.traction_eyring(P, v, H, 0.0, ETA_P, 1e9, TAU_L0, C_TAU, MU_S, V_S, G, t)
+        big = ehl.traction_eyring(P, v, H, 0.0, ETA_P, RHEOLOGY._replace(tau_E0=1e9), SOLID, t)
         assert big == pytest.approx(new, rel=1e-9)
     # at 1 m/s sliding the Newtonian law is at tau_L; the Eyring film is at the closed form
     # tau_L tanh(tau_E0 asinh(S)/tau_L), S = 3700: 57 % of tau_L
     v = 1000.0
     tau_L = TAU_L0 + C_TAU * P
     S = ETA_P * v / (H * TAU_E)
-    assert ehl.traction_per_speed(P, v, H, 0.0, ETA_P, TAU_L0, C_TAU, MU_S, V_S, G, 1e300) * v > 0.999 * tau_L
+    assert ehl.traction_per_speed(P, v, H, 0.0, ETA_P, RHEOLOGY, SOLID, 1e300) * v > 0.999 * tau_L
     assert fluid(v) == pytest.approx(tau_L * math.tanh(TAU_E * math.asinh(S) / tau_L), rel=1e-12)
     assert fluid(v) < 0.6 * tau_L
 
@@ -157,13 +159,13 @@ def test_solid_share_and_mixing_are_those_of_traction_per_speed():
     """phi = 1: pure Coulomb mu_s p tanh(v/v_s)/v, identical to traction_per_speed (1e-15); no
     film (h = 0) likewise; 0 < phi < 1: phi (solid) + (1 - phi) (film), linear in phi (1e-14)."""
     for v in (0.0, 0.1, 10.0, 1e3):
-        a = ehl.traction_eyring(P, v, H, 1.0, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, 1e-4)
-        b = ehl.traction_per_speed(P, v, H, 1.0, ETA_P, TAU_L0, C_TAU, MU_S, V_S, G, 1e-4)
+        a = ehl.traction_eyring(P, v, H, 1.0, ETA_P, RHEOLOGY, SOLID, 1e-4)
+        b = ehl.traction_per_speed(P, v, H, 1.0, ETA_P, RHEOLOGY, SOLID, 1e-4)
         assert a == pytest.approx(b, rel=1e-15)
-        assert ehl.traction_eyring(P, v, 0.0, 1.0, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, 1e-4) == \
+        assert ehl.traction_eyring(P, v, 0.0, 1.0, ETA_P, RHEOLOGY, SOLID, 1e-4) == \
             pytest.approx(b, rel=1e-15)
-        g0 = ehl.traction_eyring(P, v, H, 0.0, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, 1e-4)
-        g3 = ehl.traction_eyring(P, v, H, 0.3, ETA_P, TAU_E, TAU_L0, C_TAU, MU_S, V_S, G, 1e-4)
+        g0 = ehl.traction_eyring(P, v, H, 0.0, ETA_P, RHEOLOGY, SOLID, 1e-4)
+        g3 = ehl.traction_eyring(P, v, H, 0.3, ETA_P, RHEOLOGY, SOLID, 1e-4)
         assert g3 == pytest.approx(0.3 * a + 0.7 * g0, rel=1e-14)
 
 
@@ -206,6 +208,7 @@ def test_eyring_law_matches_published_twin_disc_curve():
     peak = pts[np.argmax(pts[:, 1]), 0]
     for S, mu in pts[pts[:, 0] <= peak]:
         v = S * u
-        g = ehl.traction_eyring(p_mean, v, h, 0.0, eta_p, lub.eyring_stress, lub.limiting_shear_stress_0,
-                                lub.limiting_shear_coefficient, MU_S, V_S, lub.shear_modulus, 2.0 * b / u)
+        rheology = ehl.FilmRheology(lub.eyring_stress, lub.limiting_shear_stress_0, lub.limiting_shear_coefficient,
+                                    lub.shear_modulus)
+        g = ehl.traction_eyring(p_mean, v, h, 0.0, eta_p, rheology, SOLID, 2.0 * b / u)
         assert abs(g * v / p_mean - mu) <= 0.01, (S, mu, g * v / p_mean)
