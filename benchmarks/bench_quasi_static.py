@@ -39,6 +39,11 @@ C-callable wrappers, one specialisation each of ``solve_dense`` and ``_signed_pe
 compiled shape-error message. Warm, this script's friction CPU medians unchanged (4 alternating
 runs each, median of the medians, load 4.7-4.9): tsrb_reference combined 8.07 -> 8.03 ms,
 trb_32208 combined 6.51 -> 6.41 ms, pure axial 1.93 -> 1.93 and 1.40 -> 1.40 ms.
+The architecture step alone (issue 13's "no more than 20 % over the pre-bundle code"), measured on
+the code it changed (CPU of the first ``sim.simulate``, tsrb_reference combined, fresh cache, 3
+alternating runs, load 3.2-4.1, git worktrees of each commit): 8da0c47 26.0, 27.2, 26.7 s; d1b929c
+(friction bundles, on 007e693) merged with 5123ba2 (quasi-static bundles): 31.2, 31.6, 30.0 s,
++17 %. The rest of today's +46 % is the physics compiled since (README, Benchmark).
 """
 import argparse
 import os
