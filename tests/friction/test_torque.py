@@ -169,7 +169,9 @@ APK_REASON = ("aPk measured from the small end (MODEL.md 4): a bigger aPk moves 
 APK_PMAX_REASON = ("the thesis's pmax directions are those of the edge stress: aPk 4.25 -> 5.5 mm moves the large-end "
                    "contact further onto the roller end (edge_interference 0.33 -> 0.79 at 4/0 kN), aPk 3 takes it off "
                    "(-0.12); that peak is singular at the sharp end of Lwe and the slice pmax does not contain it "
-                   "(tests/published/test_edge_stress.py, docs/aPk_convention.md point 7)")
+                   "(tests/published/test_edge_stress.py, docs/aPk_convention.md point 7); with the finite peak of a "
+                   "roller corner in pmax, aPk up (4/0 kN) and aPk down (4/4) come out, aPk down (4/0) does not, "
+                   "and four other directions turn (docs/edge_peak_corner.md)")
 # Directions our model does not reproduce (README, known deviations). Strict: the day one of them
 # comes out as the thesis says, the test fails and this table must be updated.
 DEVIATIONS = {
@@ -177,7 +179,9 @@ DEVIATIONS = {
                            "thesis's cause is reproduced: the reference's contact runs onto the large roller end "
                            "(edge_stress, as Fig. 7.9 b) and PCR 36's does not (tests/published/test_edge_stress.py); "
                            "but that edge peak is singular for the sharp end of Lwe, and the slice pmax (20 slices, "
-                           "the end slice at 651 MPa) does not contain it, so our pmax compares the inner peaks"),
+                           "the end slice at 651 MPa) does not contain it, so our pmax compares the inner peaks; "
+                           "a finite corner's peak in pmax turns the combined case but not the pure axial one, and "
+                           "four other directions the other way (docs/edge_peak_corner.md)"),
     ("PCR_down", "torque"): ("PCR 36: drilling +75 % as the thesis says (7.2.1), but the contact 20-27 % shorter lowers "
                              "the EHL rolling loss by more (-2 to -4 % in all): the rolling force per unit length "
                              "hardly depends on load (Goksem & Hargreaves 1978; the 1-D Reynolds solution, "
@@ -188,7 +192,8 @@ DEVIATIONS = {
                                        "contact runs onto the large roller end and pmax is the end slice's, which grows with "
                                        "the slice count (1231 MPa at 20 slices, above 1300 at 40; "
                                        "tests/published/test_edge_stress.py); the thesis marks such edge peaks as not "
-                                       "comparable (Figs. 7.8, 7.22)"),
+                                       "comparable (Figs. 7.8, 7.22); with a finite corner's peak pmax rises by 40 % "
+                                       "(docs/edge_peak_corner.md)"),
     ("aPk_up", "torque"): ("aPk 4.25 -> 5.5 mm: drilling +25 % (the contact zones further from the pitch line), "
                            "the rolling loss unchanged (the contact length moves by less than a slice). The "
                            "pure-axial case passed before only because a slice left the contact there and cut the "
