@@ -102,3 +102,57 @@ def assert_study_refused(study, key, value, words):
         validate(study)
     for w in words:
         assert w in str(err.value)
+
+
+# Half-space sub-model of one solved contact (halfspace_contact_peak): grid width across the contact
+# in Hertz half-widths b of the mean line load; reach past each roller end in corner radii (the drop
+# there, 0.2 r_c, is far above any elastic approach here, ~0.005 mm); one-sided difference step for
+# the generatrix slope at the roller ends [mm].
+HALFSPACE_WIDTH_ACROSS = 5.0
+HALFSPACE_CORNER_EXTENT = 0.6
+HALFSPACE_FD_STEP = 1e-4
+
+
+def halfspace_contact_peak(model, raw, j, race, corner_radius, per_mm, across):
+    """Peak pressure [MPa] of roller j's contact with ``race`` (0 outer, 1 inner: the inner ring's
+    displacement is applied in roller j's meridian plane, untilted) at the solved state ``raw``,
+    from the 2-D half-space reference (sim.physics.halfspace) at the same contact load, and its x
+    from mid-roller [mm].
+
+    The rigid gap is the slice kernel's (sim.physics.contact.slice_contact_meridian) on
+    ``per_mm`` columns per mm; past each end of Lwe the generatrix continues along its tangent and
+    drops by a corner circle of radius ``corner_radius`` [mm] tangent to it, r_c - sqrt(r_c^2 - s^2)
+    at a distance s past the end; the radius of relative curvature across the roller is the slice
+    model's R_eq, interpolated; ``across`` cells over HALFSPACE_WIDTH_ACROSS Hertz half-widths.
+    """
+    from sim.physics.contact import Raceway, RingMotion, SliceContacts, slice_contact_meridian
+    from sim.physics.halfspace import solve_contact_halfspace
+
+    g, b = model.geometry, model.bearing
+    half = 0.5 * g.Lwe
+    reach = half + HALFSPACE_CORNER_EXTENT * corner_radius
+    nx = int(round(2.0 * reach * per_mm))
+    dx = 2.0 * reach / nx
+    x = -reach + (np.arange(nx) + 0.5) * dx
+    inside = half * (1.0 - 1e-9)         # the TRB's logarithmic drop is unbounded at the very ends
+    x_end = np.clip(x, -inside, inside)
+    s = np.abs(x) - half
+    step = HALFSPACE_FD_STEP
+    slope = (g.roller_radius(x_end) - g.roller_radius(x_end - np.sign(x_end) * step)) / step
+    corner = corner_radius - np.sqrt(np.maximum(corner_radius ** 2 - s ** 2, 0.0))
+    rho = g.roller_radius(x_end) + np.where(s > 0.0, slope * s - corner, 0.0)
+    psi = 2.0 * np.pi * j / g.Z
+    ring = RingMotion(0.0, 0.0, 0.0) if race == 0 else RingMotion(raw["ring"][1] * np.cos(psi), raw["ring"][0], 0.0)
+    d, nrm, pts = np.empty(nx), np.empty((nx, 2)), np.empty((nx, 2))
+    slice_contact_meridian(x, rho, 1 - 2 * race, raw["poses"][j], b.alpha, b.Dpw,
+                           Raceway(b.race_kind[race], b.race_par[race]), ring, SliceContacts(d, nrm, pts))
+    order = np.argsort(b.x)              # slices run from the large end: np.interp needs increasing x
+    R = np.interp(x, b.x[order], b.R_eq[race][order])
+    load = float(raw["Q"][j, race])
+    half_width = np.sqrt(4.0 * (load / g.Lwe) * R.max() / (np.pi * model.E_star))
+    dy = HALFSPACE_WIDTH_ACROSS * half_width / across
+    y = (np.arange(across) - 0.5 * across + 0.5) * dy
+    p, _, converged, _ = solve_contact_halfspace(-d[:, None] + y[None, :] ** 2 / (2.0 * R[:, None]), dx, dy,
+                                                 model.E_star, load=load)
+    assert converged
+    return float(p.max()), float(x[int(np.argmax(p.max(axis=1)))])

@@ -30,52 +30,22 @@ import numpy as np
 
 import sim
 from sim.api.simulation import build_model
-from sim.physics.contact import Raceway, RingMotion, SliceContacts, slice_contact_meridian
-from sim.physics.halfspace import solve_contact_halfspace
 from tests.friction.test_torque import DIRECTIONS, SCENARIOS, VARIANTS
-from tests.helpers import case
+from tests.helpers import case, halfspace_contact_peak
 
 CORNER_RADII = (0.5, 1.0)     # mm, ASSUMED roller corner radii (module docstring)
 GRID_PER_MM = 80              # cells per mm along the roller (convergence: module docstring)
 GRID_ACROSS = 40              # cells across the contact
-WIDTH_ACROSS = 5.0            # grid width across the contact in Hertz half-widths b of the mean line load
-CORNER_EXTENT = 0.6           # grid reach past each roller end in corner radii (the drop there, 0.2 r_c,
-                              # is far above any elastic approach here, ~0.005 mm)
-FD_STEP = 1e-4                # mm, one-sided difference for the generatrix slope at the roller ends
 
 
 def outer_contact_peak(overrides, Fa, Fr, r_c, per_mm=GRID_PER_MM):
     """(slice-model pmax [MPa], half-space peak [MPa], its x from mid-roller [mm]) of the most
-    loaded roller's outer contact."""
-    cfg = sim.load_config(["bearing=tsrb_reference", *overrides])
-    model = build_model(cfg)
+    loaded roller's outer contact (tests.helpers.halfspace_contact_peak)."""
+    model = build_model(sim.load_config(["bearing=tsrb_reference", *overrides]))
     raw = model.solve(case(Fa, Fr))
-    g, b = model.geometry, model.bearing
     j = int(np.argmax(raw["Q"].sum(axis=1)))
-    half = 0.5 * g.Lwe
-    reach = half + CORNER_EXTENT * r_c
-    nx = int(round(2.0 * reach * per_mm))
-    dx = 2.0 * reach / nx
-    x = -reach + (np.arange(nx) + 0.5) * dx
-    beyond = np.abs(x) > half
-    x_end = np.clip(x, -half, half)
-    s = np.abs(x) - half
-    slope = (g.roller_radius(x_end) - g.roller_radius(x_end - np.sign(x_end) * FD_STEP)) / FD_STEP
-    rho = g.roller_radius(x_end) + np.where(beyond, slope * s - (r_c - np.sqrt(np.maximum(r_c**2 - s**2, 0.0))), 0.0)
-    d, nrm, pts = np.empty(nx), np.empty((nx, 2)), np.empty((nx, 2))
-    slice_contact_meridian(x, rho, 1, raw["poses"][j], b.alpha, b.Dpw, Raceway(b.race_kind[0], b.race_par[0]),
-                           RingMotion(0.0, 0.0, 0.0), SliceContacts(d, nrm, pts))
-    order = np.argsort(b.x)              # slices run from the large end: np.interp needs increasing x
-    R = np.interp(x, b.x[order], b.R_eq[0][order])
-    load = float(raw["Q"][j, 0])
-    half_width = np.sqrt(4.0 * (load / g.Lwe) * R.max() / (np.pi * model.E_star))
-    dy = WIDTH_ACROSS * half_width / GRID_ACROSS
-    y = (np.arange(GRID_ACROSS) - 0.5 * GRID_ACROSS + 0.5) * dy
-    p, _, converged, _ = solve_contact_halfspace(-d[:, None] + y[None, :] ** 2 / (2.0 * R[:, None]), dx, dy,
-                                                 model.E_star, load=load)
-    assert converged
-    k = int(np.argmax(p.max(axis=1)))
-    return float(raw["pressure"][j, 0].max()), float(p.max()), float(x[k])
+    peak, x = halfspace_contact_peak(model, raw, j, 0, r_c, per_mm, GRID_ACROSS)
+    return float(raw["pressure"][j, 0].max()), peak, x
 
 
 def main():
