@@ -19,8 +19,9 @@ GRID_ACROSS cells over 5 Hertz half-widths across it, with the same contact load
 model's). The rigid gap is the exact one of the slice kernel (sim.physics.contact.
 slice_contact_meridian) at every grid column; beyond each end of Lwe the generatrix is continued
 by its tangent and dropped by a corner circle of radius r_c tangent to it,
-r_c - sqrt(r_c^2 - s^2) at a distance s past the end (the roller chamfer; no thesis value:
-r_c = 0.5 and 1.0 mm are ASSUMED, typical corner radii of rollers of Dwe 10 mm). The radius of
+r_c - sqrt(r_c^2 - s^2) at a distance s past the end (the roller's edge radius: thesis Table A.2
+gives r_k = 0.8 mm for the TRB 32208 roller, thesis 5.5.1 the flat roller face with edge radius r_k;
+the TSRB roller of the same size is given none, so 0.5 and 1.0 mm are run beside it). The radius of
 relative curvature across the roller is the slice model's R_eq, interpolated.
 
 Grid convergence (printed first): the peak at 80 and 160 cells per mm differs by about 1 % for
@@ -33,7 +34,8 @@ from sim.api.simulation import build_model
 from tests.friction.test_torque import DIRECTIONS, SCENARIOS, VARIANTS
 from tests.helpers import case, halfspace_contact_peak
 
-CORNER_RADII = (0.5, 1.0)     # mm, ASSUMED roller corner radii (module docstring)
+CORNER_RADII = (0.5, 0.8, 1.0)  # mm, roller corner radii: thesis Table A.2's r_k = 0.8 mm (the edge radius of the
+                                # TRB 32208 roller, whose size the reference TSRB keeps) and 0.5 / 1.0 around it
 GRID_PER_MM = 80              # cells per mm along the roller (convergence: module docstring)
 GRID_ACROSS = 40              # cells across the contact
 
