@@ -123,7 +123,25 @@ EV_P0 = 4
 EV_MS = EV_P0 + NC
 EV_FU, EV_FV, EV_MW = EV_MS + 1, EV_MS + 2, EV_MS + 3
 EV_PSKEW = EV_MS + 4
-NEV = EV_PSKEW + 1
+# then the friction force of the inner-ring raceway and rib contacts on the inner ring along e_r, e_t,
+# e_z of the roller's meridian frame [N] (the reaction of their tractions on the roller; the dynamic
+# solver's inner-ring translation takes it, the quasi-static solvers do not read it)
+EV_RING_R, EV_RING_T, EV_RING_Z = EV_PSKEW + 1, EV_PSKEW + 2, EV_PSKEW + 3
+NEV = EV_RING_Z + 1
+
+# Rates of a roller and of the inner ring that move the contact surfaces besides the spins (the
+# dynamic solver's state; all zero in the quasi-static solution, :data:`NO_RATES`), read by
+# :func:`roller_traction` (numba-supported named tuple; module docstring, "Rates"):
+RollerRates = namedtuple("RollerRates", [
+    "psi_dot",      # rad/s, skew rate: roller angular velocity relative to the meridian frame about v'
+    "omega_w",      # rad/s, tilt rate: that angular velocity about w'' = u'' x v' (theta' cos(psi); -e_t at psi = 0)
+    "vc_r",         # mm/s, roller centre velocity in its meridian frame (orbiting with it) along e_r
+    "vc_z",         # mm/s, ... along e_z (no e_t component: the frame orbits with the roller)
+    "vi_r",         # mm/s, inner-ring translation velocity at the roller's azimuth along e_r
+    "vi_t",         # mm/s, ... along e_t
+    "vi_z",         # mm/s, ... along e_z
+])
+NO_RATES = RollerRates(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 # Friction parameters of one case (numba-supported named tuple; built by
 # sim.api.friction_model.FrictionModel from the config, the per-case fields with ``_replace``).
@@ -552,7 +570,7 @@ def roller_friction(j, wR, psi, wc, wi, case, ev):
     the pocket friction (:func:`pocket_friction`) under the quasi-static pocket force, the
     tangential force F_cage = F_D - F_t that holds the roller on its orbit at the cage speed.
     """
-    roller_traction(j, wR, psi, 0.0, wc, wi, case, ev)
+    roller_traction(j, wR, psi, RollerRates(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), wc, wi, case, ev)
     FD = roller_drag(wc, case.frames.Cen[j, 0], case.par, ev)
     return pocket_friction(FD - ev[EV_FT], wR, case.par, case.bearing.rho_m, ev)
 
@@ -593,20 +611,22 @@ def pocket_friction(F_cage, wR, par, rho_m, ev):
 
 
 @kernel
-def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
+def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
     """Raceway and rib tractions and rolling resistance of roller j, orbiting at wc [rad/s], at
-    roller speed wR [rad/s], skew psi [rad] and skew rate psi_dot [rad/s] (0 in the quasi-static
-    solution), inner-ring speed wi [rad/s] (film and frames of ``case``): fills ``ev`` (NEV,)
-    without drag and cage pocket (:func:`roller_friction` adds them; the dynamic solver its own
-    pocket force).
+    roller speed wR [rad/s], skew psi [rad] and the rates ``rates`` (:data:`RollerRates`: skew and
+    tilt rate, centre and inner-ring velocities; all 0 in the quasi-static solution), inner-ring
+    speed wi [rad/s] (film and frames of ``case``): fills ``ev`` (NEV,) without drag and cage
+    pocket (:func:`roller_friction` adds them; the dynamic solver its own pocket force).
 
     ev: moment about the roller axis [N mm], z-moment of the contacts on the roller [N mm],
     z-moment on the outer ring [N mm], tangential contact force [N], then the powers [N mm/s]
     of COMPONENTS, then the friction moment about the skew axis (without the pocket couple,
     :func:`pocket_skew_couple`) [N mm], the lateral-traction loads (u', v' [N], u' x v' [N mm])
-    and the lateral-slip power [N mm/s] (EV_MS ... EV_PSKEW). Per slice (module docstring) the
-    width integral gives the tangential force F_t, the lateral force F_l (psi != 0) and the spin
-    moment M_n; -F_t s is split into sliding and drilling per contact, -F_l s_l is sliding.
+    and the lateral-slip power [N mm/s] (EV_MS ... EV_PSKEW), then the force of the inner-ring
+    contacts' tractions on the inner ring (EV_RING_R ... EV_RING_Z) [N]. Per slice (module
+    docstring) the width integral gives the tangential force F_t, the lateral force F_l (skew or
+    in-plane rates, "Rates") and the spin moment M_n; -F_t s is split into sliding and drilling per
+    contact, -F_l s_l is sliding.
 
     The slice loop is written out here rather than called per slice: a kernel taking the
     FrictionCase per slice is not inlined by LLVM, and passing the bundle by value for every
@@ -626,8 +646,15 @@ def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
     vr = Ax[j, 2]
     vz = Ax[j, 3]
     n = p0.shape[2]
+    psi_dot = rates.psi_dot
+    wt = rates.omega_w
     for s in range(2):
         Om = -wc if s == 0 else wi - wc
+        # velocity of the ring's surface besides its spin Om: the inner ring's translation [mm/s]
+        # (the outer ring is fixed); its in-plane part is taken off the roller's below
+        ring_r = rates.vi_r if s == 1 else 0.0
+        ring_t = rates.vi_t if s == 1 else 0.0
+        ring_z = rates.vi_z if s == 1 else 0.0
         F_sum = 0.0     # sum of F_t over the contact [N]
         P_slip = 0.0    # -sum F_t s [N mm/s]
         qs_sum = 0.0    # load-weighted sliding speed [N mm/s / mm]
@@ -646,22 +673,38 @@ def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
             phik = Phi[j, s, k]
             eta = Eta[j, s, k]                                   # (len(quad.wq),) [MPa s]
             v1, v2 = _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz)
-            # a skew rate psi' (rotation about v') moves the roller surface at (X - c) by
-            # psi' v' x (X - c) = psi' x e_t, x = (X - c).u', and adds psi' v'.n to the spin about n
-            # (rigid-body kinematics, as wR u'); 0 at a steady state
-            st = v1 - v2 + psi_dot * (ur * (Xr - cr) + uz * (Xz - cz))
-            ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - Om * nz   # spin about n
-            ar = -nz                                             # a = n x e_t in (r, z)
-            az = nr
-            wroll = wR * (ur * ar + uz * az) - Om * az           # relative rolling about a
-            t_transit = 2.0 * bk / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)   # [s]
             dr = Xr - cr
             dz = Xz - cz
+            x = ur * dr + uz * dz                                # (X - c).u' [mm]
+            ar = -nz                                             # a = n x e_t in (r, z)
+            az = nr
+            # rates (module docstring, "Rates"; rigid body v = v_c + Omega x (X - c), [mm/s]):
+            # - the skew rate psi' (about v') moves the roller surface by psi' v' x (X - c) = psi' x e_t
+            #   and adds psi' v'.n to the spin about n, psi' v'.a to the rolling about a;
+            # - the tilt rate omega_w (about w'' = -e_t, first order in psi) moves it in the meridian
+            #   plane by -omega_w e_t x (X - c) = omega_w (dr e_z - dz e_r), no spin about n or a;
+            # - the centre moves by v_c = (vc_r, 0, vc_z), the inner ring's surface by its translation;
+            # the slip along e_t gains psi' x - ring_t, along a the in-plane relative velocity
+            # (v_c + omega_w (dr e_z - dz e_r) - ring).a; its normal part (squeeze) is left to the
+            # contact damping. All 0 at a steady state and in the quasi-static solution.
+            st = v1 - v2 + psi_dot * x - ring_t
+            ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - Om * nz   # spin about n
+            wroll = wR * (ur * ar + uz * az) + psi_dot * (vr * ar + vz * az) - Om * az   # relative rolling about a
+            sl_rate = (rates.vc_r - wt * dz - ring_r) * ar + (rates.vc_z + wt * dr - ring_z) * az   # [mm/s]
+            # entrainment speed: the mean speed of the two surfaces along e_t relative to the contact
+            # point (as for the moving contact of a cam and follower, Dowson & Higginson 1977, EHL 2nd
+            # ed., ch. 14), which lies at the azimuth f psi (lateral_slip_rate) and so moves along e_t at
+            # X_r f psi': 1/2 ((v1 + psi' x - X_r f psi') + (v2 + ring_t - X_r f psi')) [mm/s]
+            ue = v1 + v2
+            if psi_dot != 0.0 or ring_t != 0.0:
+                f_c = lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz)[1]
+                ue += psi_dot * (x - 2.0 * Xr * f_c) + ring_t
+            t_transit = 2.0 * bk / max(0.5 * abs(ue), MIN_ENTRAINMENT_SPEED)   # [s]
             Ft = 0.0
             Mn = 0.0
             if p0k <= 0.0:
                 pass        # an unloaded strip: rolling loss only (below)
-            elif psi == 0.0:
+            elif psi == 0.0 and sl_rate == 0.0:
                 # width integral, y = b sin(t), t in (0, pi/2), both halves (|v| is even in y)
                 for i in range(wq.shape[0]):
                     ct = cos_t[i]
@@ -674,10 +717,14 @@ def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
                     Ft -= g * st * dA
                     Mn -= g * y * vy * dA
             else:
-                # skewed roller: slip (s, s_l + y omega_s) along (e_t, a), |v| no longer even in y:
-                # each half of the width on its own; traction -g(|v|) v along the slip direction
+                # skewed roller or in-plane rates: slip (s, s_l + y omega_s) along (e_t, a), |v| no
+                # longer even in y: each half of the width on its own; traction -g(|v|) v along the
+                # slip direction. s_l: the skew's (lateral_slip_rate, with the surface speed v1 of the
+                # spin: psi' x in it would be second order, psi psi') plus the rates' in-plane slip
                 rate, f = lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz)
                 sl = psi * rate
+                if sl_rate != 0.0:
+                    sl += sl_rate
                 Fl = 0.0
                 for i in range(wq.shape[0]):
                     ct = cos_t[i]
@@ -693,12 +740,17 @@ def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
                         Mn -= g * y * vy * dA
                 # lateral force F_l a: meridian-plane load on the roller; its moment about the
                 # skewed axis u' + psi e_t at the turned contact point (first order in psi);
-                # no z-moment (a lies in the meridian plane of the contact point)
+                # no z-moment (a lies in the meridian plane of the contact point). Its power on the
+                # rates' slip: F_l a.v_c through EV_FU, EV_FV at the centre, F_l omega_w (dr a_z -
+                # dz a_r) through EV_MW about w'' (the moment (X - c) x F_l a along -e_t)
                 ua = ur * ar + uz * az
                 va = vr * ar + vz * az
                 ev[EV_FU] += Fl * ua
                 ev[EV_FV] += Fl * va
                 ev[EV_MW] += Fl * (dr * az - dz * ar)
+                if s == 1:              # reaction on the inner ring
+                    ev[EV_RING_R] -= Fl * ar
+                    ev[EV_RING_Z] -= Fl * az
                 ev[EV_MU] += Fl * psi * ((dz * ar - dr * az) + f * Xr * (az * ur - ar * uz) + f * ar * (dr * uz - dz * ur))
                 ev[EV_PSKEW] -= Fl * sl
                 ev[EV_SLIDING] -= Fl * sl
@@ -716,6 +768,8 @@ def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
             ev[EV_TZ] += tz
             if s == 0:
                 ev[EV_TOUT] -= tz                                # reaction on the outer ring
+            else:
+                ev[EV_RING_T] -= Ft                              # reaction on the inner ring
             ev[EV_FT] += Ft
             ev[EV_DRILLING] -= Mn * ws                           # spin power
             prr = Mrr * abs(wroll)                               # rolling-resistance power [N mm/s]
@@ -733,28 +787,53 @@ def roller_traction(j, wR, psi, psi_dot, wc, wi, case, ev):
             ev[EV_DRILLING] += P_slip - P_rigid
     if Qrib[j] > 0.0:
         prib = film.prib[j]
+        nr = case.bearing.nrib[j, 0]
+        nz = case.bearing.nrib[j, 1]
+        r_centre = Xrib[j, 0] - case.bearing.R_end * nr               # radius of the end-sphere centre [mm]
         v1, v2 = _surface_speeds(wR, wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
-        st = v1 - v2 + psi_dot * (ur * (Xrib[j, 0] - cr) + uz * (Xrib[j, 1] - cz))   # skew rate, as the slices
-        a_rib = np.sqrt(Qrib[j] / (np.pi * prib))                  # Hertz radius [mm]
-        t_transit = 2.0 * a_rib / max(0.5 * abs(v1 + v2), MIN_ENTRAINMENT_SPEED)
-        g = _traction(par, prib, abs(st), film.hrib[j], film.Phirib[j], film.Etarib[j], t_transit)
-        F = -g * st * Qrib[j] / prib
         dr = Xrib[j, 0] - cr
         dz = Xrib[j, 1] - cz
+        x = ur * dr + uz * dz
+        # rates as the slices (the rib is on the inner ring): along e_t psi' x - ring_t; in the
+        # meridian plane along b = n_rib x e_t the relative velocity (v_c + omega_w (dr e_z - dz e_r)
+        # - ring).b [mm/s] (its part along n_rib, squeeze, left out)
+        st = v1 - v2 + psi_dot * x - rates.vi_t
+        br = -nz
+        bz = nr
+        sb = (rates.vc_r - wt * dz - rates.vi_r) * br + (rates.vc_z + wt * dr - rates.vi_z) * bz
+        a_rib = np.sqrt(Qrib[j] / (np.pi * prib))                  # Hertz radius [mm]
+        # entrainment relative to the contact point, whose azimuth psi x_end / r_centre (below)
+        # moves it along e_t at X_r x_end psi' / r_centre (as the slices)
+        ue = v1 + v2
+        if psi_dot != 0.0 or rates.vi_t != 0.0:
+            ue += psi_dot * (x - 2.0 * Xrib[j, 0] * case.bearing.x_end / r_centre) + rates.vi_t
+        t_transit = 2.0 * a_rib / max(0.5 * abs(ue), MIN_ENTRAINMENT_SPEED)
+        # traction -g(|v|) v on the 2-D slip (st, sb) over the contact area Q / p [mm^2]
+        v = abs(st) if sb == 0.0 else np.sqrt(st * st + sb * sb)
+        g = _traction(par, prib, v, film.hrib[j], film.Phirib[j], film.Etarib[j], t_transit)
+        F = -g * st * Qrib[j] / prib
         ev[EV_MU] += F * (uz * dr - ur * dz)
         ev[EV_MS] += F * (ur * dr + uz * dz)
         ev[EV_TZ] += F * Xrib[j, 0]
         ev[EV_FT] += F
         ev[EV_RIB] -= F * st
+        ev[EV_RING_T] -= F
+        if sb != 0.0:
+            # in-plane force F_b b: on the roller along u', v' and about w'' (as the slices' F_l),
+            # its reaction on the inner ring, its power -F_b s_b
+            Fb = -g * sb * Qrib[j] / prib
+            ev[EV_FU] += Fb * (ur * br + uz * bz)
+            ev[EV_FV] += Fb * (vr * br + vz * bz)
+            ev[EV_MW] += Fb * (dr * bz - dz * br)
+            ev[EV_RING_R] -= Fb * br
+            ev[EV_RING_Z] -= Fb * bz
+            ev[EV_RIB] -= Fb * sb
         if psi != 0.0:
             # the rib load -Q_rib n along the normal through the end-sphere centre, whose azimuth is
             # phi = psi x_end / r_centre: its moment about v' (as the slices' normal loads)
-            nr = case.bearing.nrib[j, 0]
-            nz = case.bearing.nrib[j, 1]
-            phi = psi * case.bearing.x_end / (Xrib[j, 0] - case.bearing.R_end * nr)
+            phi = psi * case.bearing.x_end / r_centre
             ev[EV_MS] -= Qrib[j] * phi * (Xrib[j, 0] * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
             ev[EV_FT] -= Qrib[j] * phi * nr
-
 
 @internal_kernel
 def cage_pocket_loads(wR, psi, wc, wi, active, case, loads):

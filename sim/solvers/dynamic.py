@@ -72,8 +72,9 @@ from scipy.integrate import solve_ivp
 from threadpoolctl import threadpool_limits
 
 from sim._math.jit import kernel
-from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_TOUT, EV_TZ, NC,
-                                  NEV, pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
+from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_RING_R, EV_RING_T,
+                                  EV_RING_Z, EV_TOUT, EV_TZ, NC, NEV, RollerRates, pocket_friction, pocket_skew_couple,
+                                  roller_drag, roller_traction)
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
@@ -326,7 +327,12 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             case.bearing.Qrib[j] = Qr
             case.bearing.nrib[j, 0] = work.ribc[2]
             case.bearing.nrib[j, 1] = work.ribc[3]
-            roller_traction(j, wR, psi, psi_dot, wphi, body.wi, case, ev)
+            # the roller's rates relative to its meridian frame (orbiting at phi'): skew rate psi' = Omega.v',
+            # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z'); the inner ring's translation
+            # velocity at the roller's azimuth (e_r, e_t, e_z) [rad/s, mm/s]
+            rates = RollerRates(psi_dot, Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2], rdot, zdot,
+                                vx * cph + vy * sph, -vx * sph + vy * cph, va)
+            roller_traction(j, wR, psi, rates, wphi, body.wi, case, ev)
             FD = roller_drag(wphi, r, par, ev)
             Fpf = pocket_friction(Fp, wR, par, case.bearing.rho_m, ev)
             Ft_ += ev[EV_FT] - FD
@@ -341,6 +347,15 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
                 rows[NRING + NCAGE + E_DISS] += ev[EV_P0 + i]
             tot[TO_PSKEW] += ev[EV_PSKEW]
             rows[NRING + NCAGE + E_IN] = body.wi * (ev[EV_TZ] + ev[EV_TOUT])
+            # the inner-ring tractions' reaction on the ring's translation (e_r, e_t, e_z of the roller's
+            # meridian frame to x, y, z); its power on the ring's velocity is part of the kernel's slip
+            ring_fx = ev[EV_RING_R] * cph - ev[EV_RING_T] * sph
+            ring_fy = ev[EV_RING_R] * sph + ev[EV_RING_T] * cph
+            ring_fz = ev[EV_RING_Z]
+        else:
+            ring_fx = 0.0
+            ring_fy = 0.0
+            ring_fz = 0.0
         # translation (cylindrical coordinates: centrifugal and Coriolis terms)
         a_r = r * wphi * wphi + Fr_ / m
         a_z = Fz_ / m
@@ -372,9 +387,9 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
         # the pocket couple's reaction on the cage (its z-component) and its work
         Tcage -= Cs * A[1, 2]
         P_pocket -= Cs * (psi_dot + (wphi - wc) * A[1, 2])
-        rows[3] = (f[3] + fd[3]) / body.m_ring
-        rows[4] = (f[4] + fd[4]) * cph / body.m_ring
-        rows[5] = (f[4] + fd[4]) * sph / body.m_ring
+        rows[3] = (f[3] + fd[3] + ring_fz) / body.m_ring
+        rows[4] = ((f[4] + fd[4]) * cph + ring_fx) / body.m_ring
+        rows[5] = ((f[4] + fd[4]) * sph + ring_fy) / body.m_ring
         rows[NRING + 1] = Tcage / body.I_cage
         rows[NRING + NCAGE + E_DAMP] = P_damp
         rows[NRING + NCAGE + E_ELASTIC] = P_el

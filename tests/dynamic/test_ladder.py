@@ -305,7 +305,7 @@ def test_the_rib_held_skew_is_overdamped_and_creeps_at_the_traction_rate():
     ev = np.zeros(F.NEV)
 
     def moment(p, p_dot):
-        F.roller_traction(0, wR[0], p, p_dot, wc, problem.body.wi, problem.case, ev)
+        F.roller_traction(0, wR[0], p, F.NO_RATES._replace(psi_dot=p_dot), wc, problem.body.wi, problem.case, ev)
         return ev[F.EV_MS]
 
     psi_eq = psi[0]
