@@ -77,7 +77,8 @@ order in psi:
   the cage supplies. Gyroscopic skew moments (I_x omega_R omega_c psi, < 1 N mm here) are neglected;
 - a skew rate psi' (the dynamic solver; 0 in the quasi-static solution) is a rotation about v':
   it moves the slice's roller surface by psi' x along e_t and adds psi' v'.n to the spin about n
-  (rigid-body kinematics, as the spin wR u'), and so damps the skew through the tractions;
+  (rigid-body kinematics, as the spin wR u'), and so damps the skew through the tractions
+  ("Rates" below);
 - the cage pocket closes the balance. Nothing else holds a skewed roller elastically: without
   the pocket a TSRB roller's friction moment keeps its sign across every skew (tested), so
   there is no free equilibrium. The pocket is a clearance plus a stiff penalty couple
@@ -86,6 +87,39 @@ order in psi:
   beyond it, k = k_p Lwe^2 / 2 (two end contacts of stiffness k_p at +-Lwe/2). If the friction
   moment vanishes inside the clearance the roller sits there (a free skew equilibrium: the TRBs,
   held by the rib); otherwise it rests on the pocket at psi_c + M / k.
+
+Rates (the dynamic solver, :data:`RollerRates`; all zero in the quasi-static solution, where the
+kernels then do exactly the arithmetic they did without them). The roller moves as a rigid body,
+v(P) = v_c + Omega x (P - c), with Omega relative to its meridian frame (which orbits with it)
+= omega_R u'' + psi' v' + omega_w w'' (w'' = u'' x v' = -e_t + O(psi)); the inner ring's surface
+moves with its spin and its translation V. At the slice's contact point X, with x = (X - c).u',
+(dr, dz) = X - c [mm], rates in rad/s and mm/s, the relative velocity roller - ring gains, first
+order in psi as the skew model:
+
+- along e_t: psi' x - V_t (the tilt and the centre move in the meridian plane, v_c.e_t = 0);
+- in the meridian plane: v_c + omega_w (dr e_z - dz e_r) - (V_r, V_z) (-omega_w e_t x (X - c));
+  its component along a adds to the lateral slip s_l of the 2-D slip (the skew's own, psi times
+  lateral_slip_rate, keeps the spin's surface speed: psi' x in it is second order, psi psi'); its
+  component along n (squeeze) is not a slip: the contact damping of the normal chart takes it.
+  A roller translating along a at speed v without spin thus slips laterally by exactly v at every
+  slice, a tilt rate by omega_w (dr a_z - dz a_r), affine in the contact point;
+- spin about n: psi' v'.n; rolling about a: psi' v'.a (omega_w w'' has no component along n or a).
+
+The tractions' forces and moments are the same as for the skew (F_t along e_t, F_l along a, at X):
+on the roller F_l a through EV_FU, EV_FV at the centre and its moment about w'' (EV_MW), F_t x
+about v' (EV_MS); so their power on the rates is exactly -F_t (psi' x) - F_l (s_l - psi
+lateral_slip_rate), the slip power the loss channels count (virtual power: the dynamic solver's
+energy balance closes to round-off, tests/dynamic/test_ladder.py). The inner-ring contacts' tractions
+react on the inner ring (EV_RING_R, EV_RING_T, EV_RING_Z), whose translation V is in the slip; their
+power on V is -(F_t V_t + F_l V.a) of the same slip power. (Neither solver applies that reaction yet,
+so the dynamic one passes V = 0: sim.solvers.dynamic.rhs.)
+The rib takes the same rates on its 2-D slip (s, s_b), s_b along b = n_rib x e_t in the meridian plane.
+The entrainment speed of the transit time 2 b / u is the mean speed of the surfaces relative to the
+contact point (cam and follower, Dowson & Higginson 1977): the contact lies at the azimuth f psi
+(lateral_slip_rate; psi x_end / r_centre at the rib) and moves along e_t at X_r f psi', so
+u = 1/2 |v1 + v2 + psi' (x - 2 X_r f) + V_t|. The film itself (thickness, load share, thermal
+viscosity, lubrication_state) stays that of the spins, refreshed per window; the lateral slip of the
+rates does not enter the shear heating.
 
 Unknowns: omega_R,j (roller moment about u' = 0, per roller), with skew psi_j (moment about
 v' = 0, per roller), and omega_c (cage moment about z = 0: sum over rollers of the z-moments the
@@ -561,6 +595,27 @@ def pocket_skew_couple(psi, par):
 
 
 @kernel
+def rate_slip(rates, inner, dr, dz, ar, az, ur, uz):
+    """Slip of the roller against a ring at a contact point from the roller's and the inner ring's
+    rates (module docstring, "Rates"): (along e_t, along a) [mm/s], to add to the spins' slip.
+
+    rates: :data:`RollerRates` [rad/s, mm/s]; inner: the ring is the inner ring (its translation
+    moves its surface; the outer ring is fixed); (dr, dz): contact point X - c from the roller
+    centre [mm]; (ar, az): in-plane tangent a = n x e_t of the surface there; (ur, uz): roller
+    axis u'. Rigid body v = v_c + Omega x (X - c), Omega = psi' v' + omega_w w'' besides the spin,
+    w'' = -e_t (first order in psi): along e_t psi' v' x (X - c) = psi' x e_t, x = (X - c).u'; in
+    the meridian plane v_c - omega_w e_t x (X - c) = v_c + omega_w (dr e_z - dz e_r); less the inner
+    ring's translation V. The part along the normal n (squeeze) is not returned.
+    """
+    ring_r = rates.vi_r if inner else 0.0
+    ring_t = rates.vi_t if inner else 0.0
+    ring_z = rates.vi_z if inner else 0.0
+    s_t = rates.psi_dot * (ur * dr + uz * dz) - ring_t
+    s_a = (rates.vc_r - rates.omega_w * dz - ring_r) * ar + (rates.vc_z + rates.omega_w * dr - ring_z) * az
+    return s_t, s_a
+
+
+@kernel
 def roller_friction(j, wR, psi, wc, wi, case, ev):
     """Friction of roller j at roller speed wR [rad/s], skew psi [rad] and cage speed wc [rad/s],
     inner-ring speed wi [rad/s], film and frames of ``case`` (:data:`FrictionCase`): fills ``ev`` (NEV,)
@@ -647,14 +702,9 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
     vz = Ax[j, 3]
     n = p0.shape[2]
     psi_dot = rates.psi_dot
-    wt = rates.omega_w
     for s in range(2):
         Om = -wc if s == 0 else wi - wc
-        # velocity of the ring's surface besides its spin Om: the inner ring's translation [mm/s]
-        # (the outer ring is fixed); its in-plane part is taken off the roller's below
-        ring_r = rates.vi_r if s == 1 else 0.0
-        ring_t = rates.vi_t if s == 1 else 0.0
-        ring_z = rates.vi_z if s == 1 else 0.0
+        ring_t = rates.vi_t if s == 1 else 0.0      # inner ring's translation along e_t [mm/s]
         F_sum = 0.0     # sum of F_t over the contact [N]
         P_slip = 0.0    # -sum F_t s [N mm/s]
         qs_sum = 0.0    # load-weighted sliding speed [N mm/s / mm]
@@ -678,19 +728,15 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             x = ur * dr + uz * dz                                # (X - c).u' [mm]
             ar = -nz                                             # a = n x e_t in (r, z)
             az = nr
-            # rates (module docstring, "Rates"; rigid body v = v_c + Omega x (X - c), [mm/s]):
-            # - the skew rate psi' (about v') moves the roller surface by psi' v' x (X - c) = psi' x e_t
-            #   and adds psi' v'.n to the spin about n, psi' v'.a to the rolling about a;
-            # - the tilt rate omega_w (about w'' = -e_t, first order in psi) moves it in the meridian
-            #   plane by -omega_w e_t x (X - c) = omega_w (dr e_z - dz e_r), no spin about n or a;
-            # - the centre moves by v_c = (vc_r, 0, vc_z), the inner ring's surface by its translation;
-            # the slip along e_t gains psi' x - ring_t, along a the in-plane relative velocity
-            # (v_c + omega_w (dr e_z - dz e_r) - ring).a; its normal part (squeeze) is left to the
-            # contact damping. All 0 at a steady state and in the quasi-static solution.
-            st = v1 - v2 + psi_dot * x - ring_t
+            # rates (module docstring, "Rates"; rigid body v = v_c + Omega x (X - c)): the slip
+            # along e_t gains psi' x - V_t, along a the in-plane relative velocity sl_rate [mm/s]
+            # (rate_slip); the skew rate adds psi' v'.n to the spin about n and psi' v'.a to the
+            # rolling about a, the tilt rate (about w'' = -e_t) neither. All 0 at a steady state
+            # and in the quasi-static solution.
+            st_rate, sl_rate = rate_slip(rates, s == 1, dr, dz, ar, az, ur, uz)
+            st = v1 - v2 + st_rate
             ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - Om * nz   # spin about n
             wroll = wR * (ur * ar + uz * az) + psi_dot * (vr * ar + vz * az) - Om * az   # relative rolling about a
-            sl_rate = (rates.vc_r - wt * dz - ring_r) * ar + (rates.vc_z + wt * dr - ring_z) * az   # [mm/s]
             # entrainment speed: the mean speed of the two surfaces along e_t relative to the contact
             # point (as for the moving contact of a cam and follower, Dowson & Higginson 1977, EHL 2nd
             # ed., ch. 14), which lies at the azimuth f psi (lateral_slip_rate) and so moves along e_t at
@@ -794,13 +840,12 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         dr = Xrib[j, 0] - cr
         dz = Xrib[j, 1] - cz
         x = ur * dr + uz * dz
-        # rates as the slices (the rib is on the inner ring): along e_t psi' x - ring_t; in the
-        # meridian plane along b = n_rib x e_t the relative velocity (v_c + omega_w (dr e_z - dz e_r)
-        # - ring).b [mm/s] (its part along n_rib, squeeze, left out)
-        st = v1 - v2 + psi_dot * x - rates.vi_t
+        # rates as the slices (rate_slip; the rib is on the inner ring): along e_t, and in the
+        # meridian plane along b = n_rib x e_t [mm/s] (the part along n_rib, squeeze, left out)
         br = -nz
         bz = nr
-        sb = (rates.vc_r - wt * dz - rates.vi_r) * br + (rates.vc_z + wt * dr - rates.vi_z) * bz
+        st_rate, sb = rate_slip(rates, True, dr, dz, br, bz, ur, uz)
+        st = v1 - v2 + st_rate
         a_rib = np.sqrt(Qrib[j] / (np.pi * prib))                  # Hertz radius [mm]
         # entrainment relative to the contact point, whose azimuth psi x_end / r_centre (below)
         # moves it along e_t at X_r x_end psi' / r_centre (as the slices)

@@ -48,12 +48,15 @@ Loads (every formula is a physics kernel; this module only assembles them):
   (2-D slip per slice with skew), :func:`sim.physics.friction.roller_drag`; the film (thickness,
   load share, rolling forces, Hertz data, thermal viscosity) is held fixed over a window and
   refreshed between windows (:func:`sim.physics.friction.lubrication_state`, as the
-  quasi-static kinematics hold it over a Newton solve). The slip includes the skew rate psi'
-  (each slice moves by psi' x along e_t, the spin about n gains psi' v'.n): it is the only
-  damping of the skew on the TRB's rib, whose restoring stiffness with I_y would otherwise ring
-  undamped at ~2.4 kHz (TRB 31313, 35 kN; damping ratio ~30 with it). It omits the roller's own
-  translation and tilt rates (micrometres per second against metres per second at the steady
-  state; the tilt is held by the stiff, damped raceway contacts);
+  quasi-static kinematics hold it over a Newton solve). The slip is the full rigid-body one
+  (:data:`sim.physics.friction.RollerRates`, friction module docstring "Rates"): the skew rate
+  psi' (each slice moves by psi' x along e_t, the spin about n gains psi' v'.n; the only damping
+  of the skew on the TRB's rib, whose restoring stiffness with I_y would otherwise ring undamped
+  at ~2.4 kHz, TRB 31313, 35 kN; damping ratio ~30 with it), the tilt rate Omega.w'' and the
+  centre's velocity (r', z') in the meridian plane, their in-plane parts in the lateral slip of
+  every slice and the rib (the normal parts, squeeze, are the contact damping's). The inner
+  ring's translation velocity and the tractions' reaction on it are left out (:func:`rhs`: the
+  quasi-static ring balance omits that reaction too);
 - cage pocket: circumferential penalty at the pitch radius, force -k (|g| - c/2) sign(g) beyond
   the half play c/2 plus a damper while in contact (never pulling), both set in smoothly over a
   transition depth (a roller resting on its pocket with a few hundredths of a newton sits there:
@@ -72,9 +75,8 @@ from scipy.integrate import solve_ivp
 from threadpoolctl import threadpool_limits
 
 from sim._math.jit import kernel
-from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_RING_R, EV_RING_T,
-                                  EV_RING_Z, EV_TOUT, EV_TZ, NC, NEV, RollerRates, pocket_friction, pocket_skew_couple,
-                                  roller_drag, roller_traction)
+from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_TOUT, EV_TZ, NC,
+                                  NEV, RollerRates, pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
@@ -328,10 +330,14 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             case.bearing.nrib[j, 0] = work.ribc[2]
             case.bearing.nrib[j, 1] = work.ribc[3]
             # the roller's rates relative to its meridian frame (orbiting at phi'): skew rate psi' = Omega.v',
-            # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z'); the inner ring's translation
-            # velocity at the roller's azimuth (e_r, e_t, e_z) [rad/s, mm/s]
-            rates = RollerRates(psi_dot, Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2], rdot, zdot,
-                                vx * cph + vy * sph, -vx * sph + vy * cph, va)
+            # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z') [rad/s, mm/s]. The inner
+            # ring's translation velocity is left out of the slip, and with it the reaction of the
+            # inner-ring tractions (EV_RING_*) on the ring's translation (both or neither, for the
+            # power balance): the quasi-static solver's ring balance does not take that reaction
+            # either (its friction loads act on the rollers only), and with it here alone the TRB
+            # 32208's skewed steady state (4.5 kN) left the quasi-static loads by 1.5 %, the pinion
+            # torques by 2.4 % (the lateral tractions' axial components on the inner ring; README)
+            rates = RollerRates(psi_dot, Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2], rdot, zdot, 0.0, 0.0, 0.0)
             roller_traction(j, wR, psi, rates, wphi, body.wi, case, ev)
             FD = roller_drag(wphi, r, par, ev)
             Fpf = pocket_friction(Fp, wR, par, case.bearing.rho_m, ev)
@@ -347,15 +353,6 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
                 rows[NRING + NCAGE + E_DISS] += ev[EV_P0 + i]
             tot[TO_PSKEW] += ev[EV_PSKEW]
             rows[NRING + NCAGE + E_IN] = body.wi * (ev[EV_TZ] + ev[EV_TOUT])
-            # the inner-ring tractions' reaction on the ring's translation (e_r, e_t, e_z of the roller's
-            # meridian frame to x, y, z); its power on the ring's velocity is part of the kernel's slip
-            ring_fx = ev[EV_RING_R] * cph - ev[EV_RING_T] * sph
-            ring_fy = ev[EV_RING_R] * sph + ev[EV_RING_T] * cph
-            ring_fz = ev[EV_RING_Z]
-        else:
-            ring_fx = 0.0
-            ring_fy = 0.0
-            ring_fz = 0.0
         # translation (cylindrical coordinates: centrifugal and Coriolis terms)
         a_r = r * wphi * wphi + Fr_ / m
         a_z = Fz_ / m
@@ -387,9 +384,9 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
         # the pocket couple's reaction on the cage (its z-component) and its work
         Tcage -= Cs * A[1, 2]
         P_pocket -= Cs * (psi_dot + (wphi - wc) * A[1, 2])
-        rows[3] = (f[3] + fd[3] + ring_fz) / body.m_ring
-        rows[4] = ((f[4] + fd[4]) * cph + ring_fx) / body.m_ring
-        rows[5] = ((f[4] + fd[4]) * sph + ring_fy) / body.m_ring
+        rows[3] = (f[3] + fd[3]) / body.m_ring
+        rows[4] = (f[4] + fd[4]) * cph / body.m_ring
+        rows[5] = (f[4] + fd[4]) * sph / body.m_ring
         rows[NRING + 1] = Tcage / body.I_cage
         rows[NRING + NCAGE + E_DAMP] = P_damp
         rows[NRING + NCAGE + E_ELASTIC] = P_el
