@@ -107,12 +107,13 @@ order in psi as the skew model:
 
 The tractions' forces and moments are the same as for the skew (F_t along e_t, F_l along a, at X):
 on the roller F_l a through EV_FU, EV_FV at the centre and its moment about w'' (EV_MW), F_t x
-about v' (EV_MS); so their power on the rates is exactly -F_t (psi' x) - F_l (s_l - psi
-lateral_slip_rate), the slip power the loss channels count (virtual power: the dynamic solver's
-energy balance closes to round-off, tests/dynamic/test_ladder.py). The inner-ring contacts' tractions
-react on the inner ring (EV_RING_R, EV_RING_T, EV_RING_Z), whose translation V is in the slip; their
-power on V is -(F_t V_t + F_l V.a) of the same slip power. (Neither solver applies that reaction yet,
-so the dynamic one passes V = 0: sim.solvers.dynamic.rhs.)
+about v' (EV_MS); so their power on the rates, F_t psi' x + F_l (s_l - psi lateral_slip_rate), is
+exactly the rates' share of the slip power F_t s + F_l s_l whose negative the loss channels count
+(virtual power; tests/dynamic/test_slip_rates.py, and the dynamic solver's energy balance closes to
+its integration tolerance, tests/dynamic/test_ladder.py). The inner-ring contacts' tractions react
+on the inner ring (EV_RING_R, EV_RING_T, EV_RING_Z), whose translation V is in the slip; their power
+on V, -F_t V_t - F_l V.a, closes the same balance. (Neither solver applies that reaction yet, so the
+dynamic one passes V = 0: sim.solvers.dynamic.rhs.)
 The rib takes the same rates on its 2-D slip (s, s_b), s_b along b = n_rib x e_t in the meridian plane.
 The entrainment speed of the transit time 2 b / u is the mean speed of the surfaces relative to the
 contact point (cam and follower, Dowson & Higginson 1977): the contact lies at the azimuth f psi
@@ -153,7 +154,8 @@ EV_P0 = 4
 # then, for roller skew (module docstring, "Roller skew"): the friction moment about the skew axis v'
 # [N mm]; the lateral tractions as meridian-plane loads on the roller (along u', along v' [N], moment
 # about u' x v' [N mm], the layout of the quasi-static roller_loads); the power of the lateral
-# traction on the lateral slip of the skewed roller [N mm/s], a part of EV_SLIDING.
+# traction on the lateral slip of the skewed roller (and of the dynamic solver's rates, "Rates") [N mm/s],
+# a part of EV_SLIDING.
 EV_MS = EV_P0 + NC
 EV_FU, EV_FV, EV_MW = EV_MS + 1, EV_MS + 2, EV_MS + 3
 EV_PSKEW = EV_MS + 4
@@ -741,10 +743,13 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             # point (as for the moving contact of a cam and follower, Dowson & Higginson 1977, EHL 2nd
             # ed., ch. 14), which lies at the azimuth f psi (lateral_slip_rate) and so moves along e_t at
             # X_r f psi': 1/2 ((v1 + psi' x - X_r f psi') + (v2 + ring_t - X_r f psi')) [mm/s]
+            rate = 0.0
+            f = 0.0
+            if psi != 0.0 or psi_dot != 0.0 or ring_t != 0.0:
+                rate, f = lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz)
             ue = v1 + v2
             if psi_dot != 0.0 or ring_t != 0.0:
-                f_c = lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz)[1]
-                ue += psi_dot * (x - 2.0 * Xr * f_c) + ring_t
+                ue += psi_dot * (x - 2.0 * Xr * f) + ring_t
             t_transit = 2.0 * bk / max(0.5 * abs(ue), MIN_ENTRAINMENT_SPEED)   # [s]
             Ft = 0.0
             Mn = 0.0
@@ -767,7 +772,6 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
                 # longer even in y: each half of the width on its own; traction -g(|v|) v along the
                 # slip direction. s_l: the skew's (lateral_slip_rate, with the surface speed v1 of the
                 # spin: psi' x in it would be second order, psi psi') plus the rates' in-plane slip
-                rate, f = lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz)
                 sl = psi * rate
                 if sl_rate != 0.0:
                     sl += sl_rate
