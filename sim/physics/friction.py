@@ -101,7 +101,7 @@ order in psi as the skew model:
   its component along a adds to the lateral slip s_l of the 2-D slip (the skew's own, psi times
   lateral_slip_rate, keeps the spin's surface speed: psi' x in it is second order, psi psi'); its
   component along n (squeeze) is not a slip: the contact damping of the normal chart takes it.
-  A roller translating along a at speed v without spin thus slips laterally by exactly v at every
+  A roller (unskewed) translating along a at speed v thus slips laterally by exactly v at every
   slice, a tilt rate by omega_w (dr a_z - dz a_r), affine in the contact point;
 - spin about n: psi' v'.n; rolling about a: psi' v'.a (omega_w w'' has no component along n or a).
 
@@ -116,11 +116,11 @@ on V, -F_t V_t - F_l V.a, closes the same balance. (Neither solver applies that 
 dynamic one passes V = 0: sim.solvers.dynamic.rhs.)
 The rib takes the same rates on its 2-D slip (s, s_b), s_b along b = n_rib x e_t in the meridian plane.
 The entrainment speed of the transit time 2 b / u is the mean speed of the surfaces relative to the
-contact point (cam and follower, Dowson & Higginson 1977): the contact lies at the azimuth f psi
-(lateral_slip_rate; psi x_end / r_centre at the rib) and moves along e_t at X_r f psi', so
-u = 1/2 |v1 + v2 + psi' (x - 2 X_r f) + V_t|. The film itself (thickness, load share, thermal
-viscosity, lubrication_state) stays that of the spins, refreshed per window; the lateral slip of the
-rates does not enter the shear heating.
+contact point (Reynolds' equation in the frame of a moving contact, as for a cam and follower): the
+contact lies at the azimuth f psi (lateral_slip_rate; psi x_end / r_centre at the rib) and moves
+along e_t at X_r f psi', so u = 1/2 |v1 + v2 + psi' (x - 2 X_r f) + V_t|. The film itself (thickness,
+load share, thermal viscosity, lubrication_state) stays that of the spins, refreshed per window; the
+lateral slip of the rates does not enter the shear heating.
 
 Unknowns: omega_R,j (roller moment about u' = 0, per roller), with skew psi_j (moment about
 v' = 0, per roller), and omega_c (cage moment about z = 0: sum over rollers of the z-moments the
@@ -160,8 +160,8 @@ EV_MS = EV_P0 + NC
 EV_FU, EV_FV, EV_MW = EV_MS + 1, EV_MS + 2, EV_MS + 3
 EV_PSKEW = EV_MS + 4
 # then the friction force of the inner-ring raceway and rib contacts on the inner ring along e_r, e_t,
-# e_z of the roller's meridian frame [N] (the reaction of their tractions on the roller; the dynamic
-# solver's inner-ring translation takes it, the quasi-static solvers do not read it)
+# e_z of the roller's meridian frame [N] (the reaction of their tractions on the roller; no solver
+# applies it yet, module docstring "Rates")
 EV_RING_R, EV_RING_T, EV_RING_Z = EV_PSKEW + 1, EV_PSKEW + 2, EV_PSKEW + 3
 NEV = EV_RING_Z + 1
 
@@ -740,9 +740,10 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - Om * nz   # spin about n
             wroll = wR * (ur * ar + uz * az) + psi_dot * (vr * ar + vz * az) - Om * az   # relative rolling about a
             # entrainment speed: the mean speed of the two surfaces along e_t relative to the contact
-            # point (as for the moving contact of a cam and follower, Dowson & Higginson 1977, EHL 2nd
-            # ed., ch. 14), which lies at the azimuth f psi (lateral_slip_rate) and so moves along e_t at
-            # X_r f psi': 1/2 ((v1 + psi' x - X_r f psi') + (v2 + ring_t - X_r f psi')) [mm/s]
+            # point (Reynolds' equation in the frame of a moving contact, whose Couette term carries
+            # the surface speeds relative to it, as for a cam and follower), which lies at the azimuth
+            # f psi (lateral_slip_rate) and so moves along e_t at X_r f psi':
+            # 1/2 ((v1 + psi' x - X_r f psi') + (v2 + ring_t - X_r f psi')) [mm/s]
             rate = 0.0
             f = 0.0
             if psi != 0.0 or psi_dot != 0.0 or ring_t != 0.0:
@@ -883,6 +884,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             phi = psi * case.bearing.x_end / r_centre
             ev[EV_MS] -= Qrib[j] * phi * (Xrib[j, 0] * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
             ev[EV_FT] -= Qrib[j] * phi * nr
+
 
 @internal_kernel
 def cage_pocket_loads(wR, psi, wc, wi, active, case, loads):
