@@ -112,7 +112,8 @@ def test_the_tractions_power_on_the_rates_is_the_loss(case):
     inner-ring velocity; no spin, rings and orbit still, no skew), the power of the kernel's forces
     and moments on the roller (F_u, F_v at the centre, moments about v' and w'') and of its reaction
     on the inner ring (EV_RING_*) on their velocities is minus the sum of the loss powers (sliding,
-    drilling, rolling, hysteresis, rib). 1e-10 relative: round-off of the slice and width sums."""
+    drilling, rolling, hysteresis, rib). 1e-10 relative: round-off of the slice and width sums. The
+    TRB 32208's roller 0 bears on its rib (93 N), whose in-plane slip joins the balance."""
     ur, uz, vr, vz = case.frames.Ax[0]
     rng = np.random.default_rng(18)
     ev = np.zeros(F.NEV)
@@ -124,5 +125,7 @@ def test_the_tractions_power_on_the_rates_is_the_loss(case):
         P_ring = ev[F.EV_RING_R] * r.vi_r + ev[F.EV_RING_T] * r.vi_t + ev[F.EV_RING_Z] * r.vi_z
         loss = sum(ev[F.EV_P0 + i] for i in range(F.NC))
         assert loss > 0.0
+        if case.bearing.Qrib[0] > 0.0:          # the TRB: its rib's 2-D slip is in the balance too
+            assert ev[F.EV_RIB] > 0.0
         assert P_roller + P_ring == pytest.approx(-loss, rel=1e-10)
 
