@@ -20,6 +20,12 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   wall; 0.67 s/rev, 5959 rhs, 185 Jacobians, 1204 LU), rhs 0.555 ms. Both within the 20 s goal; torque
   at the end unchanged to 0.1 mN mm (760.5881 and 4977.3021 N mm with either method). Most of either run
   is its first one or two revolutions (TRB 32208: 2.1 + 6.8 s, then 0.4-0.5 s per revolution).
+- 2026-11-27, slip branch (tilt rate and centre velocity in every slice's slip) against its base
+  dac2fcb, median of 3 runs, 4 alternating pairs, load about 5: TRB 32208 12.8 -> 19.5 s CPU (+48 %;
+  1.28 -> 1.9 s/rev), pinion TSRB 5.6 -> 8.2 s CPU (+43 %; 0.56 -> 0.8 s/rev); the numbers of
+  right-hand sides and Jacobians barely change, the right-hand side at a moving state costs 0.62 ->
+  0.95 ms (TRB 32208) and 0.51 -> 0.80 ms (pinion TSRB): lateral slip integrates both halves of every
+  slice's width. Within the 60 s target; the TRB 32208 is outside the 20 s goal at loads above ~5.
 
 Run from the repository root::
 

@@ -332,12 +332,12 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             # the roller's rates relative to its meridian frame (orbiting at phi'): skew rate psi' = Omega.v',
             # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z') [rad/s, mm/s]. The inner
             # ring's translation velocity is left out of the slip, and with it the reaction of the
-            # inner-ring tractions (EV_RING_*) on the ring's translation (both or neither, for the
-            # power balance): the quasi-static solver's ring balance does not take that reaction
-            # either (its friction loads act on the rollers only), and with it here alone the TRB
-            # 32208's skewed steady state (4.5 kN) left the quasi-static loads by 1.5 %, the pinion
-            # torques by 2.4 % (the lateral tractions' axial components on the inner ring; README)
-            rates = RollerRates(psi_dot, Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2], rdot, zdot, 0.0, 0.0, 0.0)
+            # inner-ring tractions on the ring's translation (both or neither, for the power
+            # balance): the quasi-static solver's ring balance does not take that reaction either
+            # (its friction loads act on the rollers only); with it here alone the TRB 32208's
+            # skewed steady state (4.5 kN) left the quasi-static loads by 1.5 %, the pinion torques
+            # by 2.4 % (the lateral tractions' axial components on the inner ring; README)
+            rates = RollerRates(psi_dot, Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2], rdot, zdot)
             roller_traction(j, wR, psi, rates, wphi, body.wi, case, ev)
             FD = roller_drag(wphi, r, par, ev)
             Fpf = pocket_friction(Fp, wR, par, case.bearing.rho_m, ev)
