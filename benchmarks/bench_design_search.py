@@ -271,6 +271,8 @@ def main(argv=None):
                         help="summarise the runs already stored (as many seeds as each method has), run nothing")
     parser.add_argument("--reference", type=Path, help="reference optimum YAML (default "
                                                        "benchmarks/reference_optima/<study name>.yaml)")
+    parser.add_argument("--out", type=Path, help="folder of the stored runs and the summary (default "
+                                                 "outputs/benchmarks/design_search/<study name>), e.g. one per variant")
     args = parser.parse_args(argv)
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     cfg = compose(args.overrides)
@@ -289,7 +291,7 @@ def main(argv=None):
     load = ", ".join(f"{k} {float(v):g} {units[k]}" for k, v in stored.load_case.items())
     reference = (float(stored.value), str(stored.objective_units), str(stored.objective), f"study {name}, {load}")
     n0 = int(cfg.study.initial_design.n)
-    out = REPO / "outputs" / "benchmarks" / "design_search" / name
+    out = args.out or REPO / "outputs" / "benchmarks" / "design_search" / name
     methods = [m for m in args.methods if m != "gp" or importlib.util.find_spec("torch") is not None]
     if len(methods) < len(args.methods):
         print("gp: skipped (Optuna's GPSampler needs PyTorch: pip install -e \".[gp]\")")
