@@ -266,6 +266,8 @@ def validate(study):
     _require(_is_int(a.get("n_polish"), 0), "acquisition.n_polish", a.get("n_polish"), "an integer >= 0 (0: no polish)")
     _require(_is_int(a.get("polish_iterations"), 1), "acquisition.polish_iterations", a.get("polish_iterations"),
              "an integer >= 1")
+    _require(_is_number(a.get("batch_distance")) and 0.0 <= a["batch_distance"] < 1.0, "acquisition.batch_distance",
+             a.get("batch_distance"), "a number in [0, 1) (unit-cube coordinates; 0: none)")
     rf = s.get("refine", {})
     _require(_is_int(rf.get("max_simulations"), 0), "refine.max_simulations", rf.get("max_simulations"),
              "an integer >= 0 (0: no local stage)")

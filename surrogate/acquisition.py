@@ -26,7 +26,10 @@ and of order 100 simulations, the regime of global GP-based constrained EI (Gard
 the local part: the feasible region of the pinion study is a thin sliver (0.03 % of the box), so
 a dense set of perturbations around the incumbent (Gaussian, several scales in unit
 coordinates) joins a scrambled Sobol set over the whole box, and a second set is drawn around
-the best candidates of the first; the acquisition is maximised over that set.
+the best candidates of the first; the acquisition is maximised over that set. Before each
+choice the best candidates that lie at least the largest local scale apart are polished by
+L-BFGS-B on the log acquisition (:func:`polish`, ``n_polish`` starts, as BoTorch's
+``optimize_acqf`` and Optuna's GPSampler do), and the polished points join the set.
 
 Batches. q designs per round for parallel workers: kriging believer (Ginsbourger, Le Riche &
 Carraro 2010, "Kriging is well-suited to parallelize optimization", 3.2): after each choice
@@ -174,6 +177,9 @@ class CandidateSettings:
         (:func:`polish`); 0: the best candidate of the set is taken as it is.
     polish_iterations : int
         L-BFGS-B iterations of that local maximisation at most.
+    batch_distance : float
+        Least max-norm distance in unit coordinates between two designs of one batch [1]; 0: only
+        the kriging believer spreads the batch.
     """
 
     n_global: int
@@ -182,11 +188,12 @@ class CandidateSettings:
     n_centres: int
     n_polish: int = 0
     polish_iterations: int = 50
+    batch_distance: float = 0.0
 
     @classmethod
     def from_config(cls, c):
         return cls(int(c["n_global"]), int(c["n_local"]), tuple(map(float, c["local_scales"])), int(c["n_centres"]),
-                   int(c.get("n_polish", 0)), int(c.get("polish_iterations", 50)))
+                   int(c.get("n_polish", 0)), int(c.get("polish_iterations", 50)), float(c.get("batch_distance", 0.0)))
 
 
 def _perturbed(centres, n, scales, rng):
@@ -339,7 +346,7 @@ def _propose(models, objective, constraints, classifier, incumbent, centre, boun
     X = low + U * span
     seen = (X_seen - low) / span
     checked = {}
-    chosen, values = [], []
+    chosen, values, batch = [], [], []
     for _ in range(q):
         a = log_acquisition(models, objective, constraints, classifier, incumbent, X)
         if settings.n_polish:
@@ -356,6 +363,8 @@ def _propose(models, objective, constraints, classifier, incumbent, centre, boun
                 break
             if len(seen) and np.min(np.max(np.abs(seen - U[i]), axis=1)) < min_distance:
                 continue
+            if batch and np.min(np.max(np.abs(np.array(batch) - U[i]), axis=1)) < settings.batch_distance:
+                continue
             if i not in checked:
                 checked[i] = bool(admissible(X[i]))
             if checked[i]:
@@ -367,6 +376,7 @@ def _propose(models, objective, constraints, classifier, incumbent, centre, boun
         chosen.append(x)
         values.append(float(a[pick]))
         seen = np.vstack([seen, U[pick][None, :]])
+        batch.append(U[pick])
         believed = float(models[objective].predict_latent(x[None, :])[0][0])
         if mean_feasible(models, constraints, x[None, :])[0] and (incumbent is None or believed < incumbent):
             incumbent = believed

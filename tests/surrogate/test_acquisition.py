@@ -155,6 +155,23 @@ def test_polished_choice_is_never_worse_than_the_candidate_sets_best():
     assert a1[0] >= a0[0]
 
 
+def test_batch_distance_keeps_the_designs_of_one_batch_apart():
+    """acquisition.batch_distance: every two designs of a batch at least that far apart (max norm,
+    unit cube), where the kriging believer alone puts them closer on the same models and seed."""
+    X = qmc.Sobol(2, seed=5).random(16)
+    f, r, feasible = ring_problem(X)
+    models = {"f": GPSurrogate(BOX, False, SETTINGS, "f").fit(X, f), "r": GPSurrogate(BOX, False, SETTINGS, "r").fit(X, r)}
+    incumbent = float(f[feasible].min()) if feasible.any() else None
+
+    def closest(batch):
+        return min(np.max(np.abs(batch[i] - batch[j])) for i in range(len(batch)) for j in range(i))
+
+    free, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4, CANDIDATES, lambda x: True, 1e-3, 7)
+    spread, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
+                        dataclasses.replace(CANDIDATES, batch_distance=0.2), lambda x: True, 1e-3, 7)
+    assert closest(free) < 0.2 and len(spread) == 4 and closest(spread) >= 0.2
+
+
 # ---------------------------------------------------------------------------- failures
 def fails(X):
     """Simulations fail inside a disk of radius 0.3 around (0.7, 0.3) (a region of unconverged designs)."""
