@@ -268,6 +268,8 @@ def validate(study):
              "an integer >= 1")
     _require(_is_number(a.get("batch_distance")) and 0.0 <= a["batch_distance"] < 1.0, "acquisition.batch_distance",
              a.get("batch_distance"), "a number in [0, 1) (unit-cube coordinates; 0: none)")
+    _require(a.get("n_diverse") is None or _is_int(a.get("n_diverse"), 0), "acquisition.n_diverse", a.get("n_diverse"),
+             "null (every design of a batch) or an integer >= 0")
     rf = s.get("refine", {})
     _require(_is_int(rf.get("max_simulations"), 0), "refine.max_simulations", rf.get("max_simulations"),
              "an integer >= 0 (0: no local stage)")

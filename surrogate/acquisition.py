@@ -178,8 +178,10 @@ class CandidateSettings:
     polish_iterations : int
         L-BFGS-B iterations of that local maximisation at most.
     batch_distance : float
-        Least max-norm distance in unit coordinates between two designs of one batch [1]; 0: only
-        the kriging believer spreads the batch.
+        Least max-norm distance in unit coordinates [1] of each of the last ``n_diverse`` designs
+        of a batch from every earlier design of the batch; 0: only the kriging believer spreads it.
+    n_diverse : int or None
+        Designs of a batch, counted from its end, held at ``batch_distance``; None: every design.
     """
 
     n_global: int
@@ -189,11 +191,14 @@ class CandidateSettings:
     n_polish: int = 0
     polish_iterations: int = 50
     batch_distance: float = 0.0
+    n_diverse: object = None
 
     @classmethod
     def from_config(cls, c):
+        n_diverse = c.get("n_diverse")
         return cls(int(c["n_global"]), int(c["n_local"]), tuple(map(float, c["local_scales"])), int(c["n_centres"]),
-                   int(c.get("n_polish", 0)), int(c.get("polish_iterations", 50)), float(c.get("batch_distance", 0.0)))
+                   int(c.get("n_polish", 0)), int(c.get("polish_iterations", 50)), float(c.get("batch_distance", 0.0)),
+                   None if n_diverse is None else int(n_diverse))
 
 
 def _perturbed(centres, n, scales, rng):
@@ -347,7 +352,9 @@ def _propose(models, objective, constraints, classifier, incumbent, centre, boun
     seen = (X_seen - low) / span
     checked = {}
     chosen, values, batch = [], [], []
-    for _ in range(q):
+    first_diverse = 0 if settings.n_diverse is None else max(q - settings.n_diverse, 0)
+    for k in range(q):
+        spread = k >= first_diverse
         a = log_acquisition(models, objective, constraints, classifier, incumbent, X)
         if settings.n_polish:
             starts = _distinct_best(U, a, settings.n_polish, max(settings.scales, default=0.0))
@@ -363,7 +370,7 @@ def _propose(models, objective, constraints, classifier, incumbent, centre, boun
                 break
             if len(seen) and np.min(np.max(np.abs(seen - U[i]), axis=1)) < min_distance:
                 continue
-            if batch and np.min(np.max(np.abs(np.array(batch) - U[i]), axis=1)) < settings.batch_distance:
+            if spread and batch and np.min(np.max(np.abs(np.array(batch) - U[i]), axis=1)) < settings.batch_distance:
                 continue
             if i not in checked:
                 checked[i] = bool(admissible(X[i]))

@@ -170,6 +170,10 @@ def test_batch_distance_keeps_the_designs_of_one_batch_apart():
     spread, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
                         dataclasses.replace(CANDIDATES, batch_distance=0.2), lambda x: True, 1e-3, 7)
     assert closest(free) < 0.2 and len(spread) == 4 and closest(spread) >= 0.2
+    half, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
+                      dataclasses.replace(CANDIDATES, batch_distance=0.2, n_diverse=2), lambda x: True, 1e-3, 7)
+    np.testing.assert_array_equal(half[:2], free[:2])          # the first q - n_diverse: the believer's alone
+    assert all(np.max(np.abs(half[k] - half[j])) >= 0.2 for k in (2, 3) for j in range(k))
 
 
 # ---------------------------------------------------------------------------- failures
