@@ -264,6 +264,8 @@ def main(argv=None):
     parser.add_argument("overrides", nargs="*", help="study overrides as for python -m studies.optimize")
     parser.add_argument("--methods", nargs="+", default=list(METHODS), choices=METHODS)
     parser.add_argument("--seeds", type=int, default=10, help="seeds 0..N-1 per method (default 10)")
+    parser.add_argument("--first-seed", type=int, default=0,
+                        help="run seeds first..N-1 only (default 0), e.g. a second process on the same --out folder")
     parser.add_argument("--budget", type=int, default=300,
                         help="full simulations per run of the direct methods and COBYLA (default 300); the "
                              "surrogate loop keeps the study's budget and local stage")
@@ -299,7 +301,7 @@ def main(argv=None):
     runs = {}
     for method in methods:
         runs[method] = []
-        for seed in range(args.seeds):
+        for seed in range(args.first_seed, args.seeds):
             file = out / f"{method}_seed{seed}.nc"
             ds = xr.load_dataset(file) if file.is_file() else None
             if ds is not None and ds.attrs.get("run_fingerprint") != fingerprint:
