@@ -166,9 +166,10 @@ def test_batch_distance_keeps_the_designs_of_one_batch_apart():
     def closest(batch):
         return min(np.max(np.abs(batch[i] - batch[j])) for i in range(len(batch)) for j in range(i))
 
-    free, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4, CANDIDATES, lambda x: True, 1e-3, 7)
+    free, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
+                      dataclasses.replace(CANDIDATES, batch_distance=0.0), lambda x: True, 1e-3, 7)
     spread, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
-                        dataclasses.replace(CANDIDATES, batch_distance=0.2), lambda x: True, 1e-3, 7)
+                        dataclasses.replace(CANDIDATES, batch_distance=0.2, n_diverse=None), lambda x: True, 1e-3, 7)
     assert closest(free) < 0.2 and len(spread) == 4 and closest(spread) >= 0.2
     half, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
                       dataclasses.replace(CANDIDATES, batch_distance=0.2, n_diverse=2), lambda x: True, 1e-3, 7)
