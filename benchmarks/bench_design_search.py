@@ -264,6 +264,8 @@ def main(argv=None):
     parser.add_argument("overrides", nargs="*", help="study overrides as for python -m studies.optimize")
     parser.add_argument("--methods", nargs="+", default=list(METHODS), choices=METHODS)
     parser.add_argument("--seeds", type=int, default=10, help="seeds 0..N-1 per method (default 10)")
+    parser.add_argument("--first-seed", type=int, default=0,
+                        help="run seeds first..N-1 only (default 0), e.g. a second process on the same --out folder")
     parser.add_argument("--budget", type=int, default=300,
                         help="full simulations per run of the direct methods and COBYLA (default 300); the "
                              "surrogate loop keeps the study's budget and local stage")
@@ -271,6 +273,8 @@ def main(argv=None):
                         help="summarise the runs already stored (as many seeds as each method has), run nothing")
     parser.add_argument("--reference", type=Path, help="reference optimum YAML (default "
                                                        "benchmarks/reference_optima/<study name>.yaml)")
+    parser.add_argument("--out", type=Path, help="folder of the stored runs and the summary (default "
+                                                 "outputs/benchmarks/design_search/<study name>), e.g. one per variant")
     args = parser.parse_args(argv)
     optuna.logging.set_verbosity(optuna.logging.WARNING)
     cfg = compose(args.overrides)
@@ -289,7 +293,7 @@ def main(argv=None):
     load = ", ".join(f"{k} {float(v):g} {units[k]}" for k, v in stored.load_case.items())
     reference = (float(stored.value), str(stored.objective_units), str(stored.objective), f"study {name}, {load}")
     n0 = int(cfg.study.initial_design.n)
-    out = REPO / "outputs" / "benchmarks" / "design_search" / name
+    out = args.out or REPO / "outputs" / "benchmarks" / "design_search" / name
     methods = [m for m in args.methods if m != "gp" or importlib.util.find_spec("torch") is not None]
     if len(methods) < len(args.methods):
         print("gp: skipped (Optuna's GPSampler needs PyTorch: pip install -e \".[gp]\")")
@@ -297,7 +301,7 @@ def main(argv=None):
     runs = {}
     for method in methods:
         runs[method] = []
-        for seed in range(args.seeds):
+        for seed in range(args.first_seed, args.seeds):
             file = out / f"{method}_seed{seed}.nc"
             ds = xr.load_dataset(file) if file.is_file() else None
             if ds is not None and ds.attrs.get("run_fingerprint") != fingerprint:

@@ -263,6 +263,13 @@ def validate(study):
     _require(isinstance(scales, list) and len(scales) > 0 and all(_is_number(v) and 0.0 < v <= 1.0 for v in scales),
              "acquisition.local_scales", scales, "a non-empty list of numbers in (0, 1] (unit-cube coordinates)")
     _require(_is_int(a.get("n_centres"), 1), "acquisition.n_centres", a.get("n_centres"), "an integer >= 1")
+    _require(_is_int(a.get("n_polish"), 0), "acquisition.n_polish", a.get("n_polish"), "an integer >= 0 (0: no polish)")
+    _require(_is_int(a.get("polish_iterations"), 1), "acquisition.polish_iterations", a.get("polish_iterations"),
+             "an integer >= 1")
+    _require(_is_number(a.get("batch_distance")) and 0.0 <= a["batch_distance"] < 1.0, "acquisition.batch_distance",
+             a.get("batch_distance"), "a number in [0, 1) (unit-cube coordinates; 0: none)")
+    _require(a.get("n_diverse") is None or _is_int(a.get("n_diverse"), 0), "acquisition.n_diverse", a.get("n_diverse"),
+             "null (every design of a batch) or an integer >= 0")
     rf = s.get("refine", {})
     _require(_is_int(rf.get("max_simulations"), 0), "refine.max_simulations", rf.get("max_simulations"),
              "an integer >= 0 (0: no local stage)")

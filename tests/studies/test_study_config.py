@@ -60,6 +60,11 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("acquisition.local_scales", [0.1, 0.0], ["study.acquisition.local_scales", "[0.1, 0.0]", "(0, 1]"]),
     ("acquisition.local_scales", [], ["study.acquisition.local_scales", "[]", "non-empty"]),
     ("acquisition.n_centres", 0, ["study.acquisition.n_centres", "0", ">= 1"]),
+    ("acquisition.n_polish", -1, ["study.acquisition.n_polish", "-1", ">= 0"]),
+    ("acquisition.n_polish", 2.5, ["study.acquisition.n_polish", "2.5", "integer"]),
+    ("acquisition.polish_iterations", 0, ["study.acquisition.polish_iterations", "0", ">= 1"]),
+    ("acquisition.batch_distance", 1.0, ["study.acquisition.batch_distance", "1.0", "[0, 1)"]),
+    ("acquisition.n_diverse", -1, ["study.acquisition.n_diverse", "-1", "null", ">= 0"]),
     ("surrogate.calibrate", "yes", ["study.surrogate.calibrate", "'yes'", "true or false"]),
     ("verify.solver", "adams", ["study.verify.solver", "'adams'", "quasi_static", "dynamic"]),
 ])

@@ -14,7 +14,7 @@ from scipy.stats import norm, qmc
 
 import sim
 from surrogate import CandidateSettings, Constraint, GPSettings, GPSurrogate, SuccessClassifier, propose
-from surrogate.acquisition import log_acquisition, log_expected_improvement, log_h, log_probability_between
+from surrogate.acquisition import log_acquisition, log_expected_improvement, log_h, log_probability_between, polish
 
 STUDY = OmegaConf.load(sim.CONF_DIR / "study" / "pinion.yaml")
 SETTINGS = dataclasses.replace(GPSettings.from_config(STUDY.surrogate, seed=0), n_restarts_optimizer=0)
@@ -121,6 +121,60 @@ def test_inadmissible_and_pending_designs_are_never_proposed():
     first = propose(models, "f", RING, None, None, None, BOX, X, 1, CANDIDATES, lambda x: True, 0.05, 1)[0]
     again, _ = propose(models, "f", RING, None, None, None, BOX, X, 2, CANDIDATES, lambda x: True, 0.05, 1, first)
     assert np.all(np.max(np.abs(again - first), axis=1) >= 0.05)
+
+
+# ---------------------------------------------------------------------------- polish of the acquisition maximum
+def two_bumps(U):
+    """log of two Gaussian bumps, one at (0.25, 0.3) and a higher one centred outside the box at
+    (0.7, 1.2): its maximum in the box is on the bound x2 = 1 at x1 = 0.7."""
+    a = -np.sum((U - [0.25, 0.3]) ** 2, axis=1) / 0.02
+    b = 1.0 - np.sum((U - [0.7, 1.2]) ** 2, axis=1) / 0.02
+    return np.logaddexp(a, b)
+
+
+def test_polish_takes_each_start_to_the_maximum_of_its_own_basin_within_the_box():
+    """The starts are optimised together on the sum of their values, which is separable: each
+    ends at its own bump's maximum (the sum is not traded between starts), the box kept."""
+    U = polish(two_bumps, np.array([[0.2, 0.35], [0.6, 0.8], [0.75, 0.95]]), 50)
+    assert np.all((U >= 0.0) & (U <= 1.0))
+    np.testing.assert_allclose(U[0], [0.25, 0.3], atol=1e-3)
+    np.testing.assert_allclose(U[1:], [[0.7, 1.0], [0.7, 1.0]], atol=1e-3)
+
+
+def test_polished_choice_is_never_worse_than_the_candidate_sets_best():
+    """With the polish the first design of a batch has a log acquisition at least that of the
+    best candidate of the set (the polished points join the set), on the same models and seed."""
+    X = qmc.Sobol(2, seed=5).random(16)
+    f, r, feasible = ring_problem(X)
+    models = {"f": GPSurrogate(BOX, False, SETTINGS, "f").fit(X, f), "r": GPSurrogate(BOX, False, SETTINGS, "r").fit(X, r)}
+    incumbent = float(f[feasible].min()) if feasible.any() else None
+    plain = dataclasses.replace(CANDIDATES, n_polish=0)
+    polished = dataclasses.replace(CANDIDATES, n_polish=4)
+    _, a0 = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 1, plain, lambda x: True, 1e-3, 7)
+    _, a1 = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 1, polished, lambda x: True, 1e-3, 7)
+    assert a1[0] >= a0[0]
+
+
+def test_batch_distance_keeps_the_designs_of_one_batch_apart():
+    """acquisition.batch_distance: every two designs of a batch at least that far apart (max norm,
+    unit cube), where the kriging believer alone puts them closer on the same models and seed."""
+    X = qmc.Sobol(2, seed=5).random(16)
+    f, r, feasible = ring_problem(X)
+    models = {"f": GPSurrogate(BOX, False, SETTINGS, "f").fit(X, f), "r": GPSurrogate(BOX, False, SETTINGS, "r").fit(X, r)}
+    incumbent = float(f[feasible].min()) if feasible.any() else None
+
+    def closest(batch):
+        return min(np.max(np.abs(batch[i] - batch[j])) for i in range(len(batch)) for j in range(i))
+
+    free, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
+                      dataclasses.replace(CANDIDATES, batch_distance=0.0), lambda x: True, 1e-3, 7)
+    spread, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
+                        dataclasses.replace(CANDIDATES, batch_distance=0.2, n_diverse=None), lambda x: True, 1e-3, 7)
+    assert closest(free) < 0.2 and len(spread) == 4 and closest(spread) >= 0.2
+    half, _ = propose(models, "f", RING, None, incumbent, X[0], BOX, X, 4,
+                      dataclasses.replace(CANDIDATES, batch_distance=0.2, n_diverse=2), lambda x: True, 1e-3, 7)
+    np.testing.assert_array_equal(half[:2], free[:2])          # the first q - n_diverse: the believer's alone
+    assert all(np.max(np.abs(half[k] - half[j])) >= 0.2 for k in (2, 3) for j in range(k))
 
 
 # ---------------------------------------------------------------------------- failures
