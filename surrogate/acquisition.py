@@ -38,7 +38,11 @@ its variance near the chosen design collapses and the next choice goes elsewhere
 means say the design is feasible it becomes the believed incumbent. Every chosen design is at
 least ``min_distance`` (max-norm, unit cube) from every simulated and every chosen one. Designs
 being simulated elsewhere (asynchronous workers, ``X_pending``) are fantasised the same way
-before the first choice.
+before the first choice. The kriging believer alone can keep a whole batch in one basin (the
+acquisition near the chosen designs stays as high as in another basin): the last ``n_diverse``
+designs of a batch are therefore also held at least ``batch_distance`` (max norm, unit cube) from
+every earlier design of the same batch, a hard-radius form of local penalisation (Gonzalez,
+Dai, Hennig & Lawrence 2016, "Batch Bayesian optimization via local penalization", AISTATS).
 """
 from dataclasses import dataclass
 
