@@ -42,6 +42,7 @@ import numpy as np
 from scipy.optimize import minimize
 
 from studies.constraints import rank_key
+from surrogate import distinct_rows
 
 SOURCE = "refinement"      # the ``source`` of this stage's points in training.nc
 
@@ -68,14 +69,8 @@ class LocalResult:
 
 def distinct_starts(U, count, min_distance):
     """The first ``count`` rows of U (best first) that lie at least ``min_distance`` (max norm,
-    unit cube) from every row chosen before."""
-    chosen = []
-    for u in U:
-        if all(np.max(np.abs(u - c)) >= min_distance for c in chosen):
-            chosen.append(u)
-            if len(chosen) == count:
-                break
-    return chosen
+    unit cube) from every row chosen before (surrogate.distinct_rows)."""
+    return [U[i] for i in distinct_rows(U, count, min_distance)]
 
 
 def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step, active_tolerance, restarts=0,

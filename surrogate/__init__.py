@@ -9,14 +9,14 @@
 - :mod:`surrogate.store`: the saved set (manifest with SHA-256 of every file, checked before
   unpickling; scikit-learn version checked on load; crash-safe replacement).
 """
-from surrogate.acquisition import CandidateSettings, Constraint, propose
+from surrogate.acquisition import CandidateSettings, Constraint, distinct_rows, propose
 from surrogate.classifier import SuccessClassifier
 from surrogate.gp import GPSettings, GPSurrogate
 from surrogate.store import (SurrogateIntegrityError, SurrogateLoadError, SurrogateVersionError,
                              SurrogateVersionWarning, load_surrogates, save_surrogates, saved_set)
 from surrogate.validation import CrossValidation, cross_validate, cross_validate_outputs
 
-__all__ = ["CandidateSettings", "Constraint", "propose", "SuccessClassifier", "GPSettings", "GPSurrogate",
+__all__ = ["CandidateSettings", "Constraint", "distinct_rows", "propose", "SuccessClassifier", "GPSettings", "GPSurrogate",
            "save_surrogates", "load_surrogates", "saved_set", "SurrogateLoadError", "SurrogateIntegrityError",
            "SurrogateVersionError", "SurrogateVersionWarning", "CrossValidation", "cross_validate",
            "cross_validate_outputs"]

@@ -262,18 +262,27 @@ def polish(log_a, U0, iterations):
     return np.clip(res.x.reshape(k, d), 0.0, 1.0)
 
 
+def distinct_rows(U, count, min_distance):
+    """Indices of the first ``count`` (>= 1) rows of U, in their order (best first), that lie at
+    least ``min_distance`` (max norm, unit cube) from every row taken before: one start per basin
+    for a multi-start local method (the acquisition's polish here, the local stage's starts in
+    studies.refine)."""
+    chosen = []
+    for i, u in enumerate(U):
+        if all(np.max(np.abs(u - U[j])) >= min_distance for j in chosen):
+            chosen.append(i)
+            if len(chosen) == count:
+                break
+    return chosen
+
+
 def _distinct_best(U, a, k, distance):
-    """Indices of the k best finite-valued rows of U by ``a``, each at least ``distance`` (max norm)
-    from every one taken before: the starts of :func:`polish` lie in different basins, not all in
-    the cloud of local candidates around the incumbent (BoTorch draws its starts spread out for
-    the same reason: ``initialize_q_batch``, Boltzmann sampling of the raw samples)."""
-    taken = []
-    for i in np.argsort(-a, kind="stable"):
-        if not np.isfinite(a[i]) or len(taken) == k:
-            break
-        if all(np.max(np.abs(U[i] - U[j])) >= distance for j in taken):
-            taken.append(i)
-    return taken
+    """Indices of the k best finite-valued rows of U by ``a`` that are :func:`distinct_rows`: the
+    starts of :func:`polish` lie in different basins, not all in the cloud of local candidates
+    around the incumbent (BoTorch draws its starts spread out for the same reason:
+    ``initialize_q_batch``, Boltzmann sampling of the raw samples)."""
+    order = [i for i in np.argsort(-a, kind="stable") if np.isfinite(a[i])]
+    return [order[p] for p in distinct_rows(U[order], k, distance)]
 
 
 def _believe(models, X):

@@ -96,8 +96,8 @@ moves with its spin only (its translation is left out: below). At the slice's co
 (dr, dz) = X - c [mm], rates in rad/s and mm/s, the relative velocity roller - ring gains, first
 order in psi as the skew model:
 
-- along e_t: psi' x - V_t (the tilt and the centre move in the meridian plane, v_c.e_t = 0);
-- in the meridian plane: v_c + omega_w (dr e_z - dz e_r) - (V_r, V_z) (-omega_w e_t x (X - c));
+- along e_t: psi' x (the tilt and the centre move in the meridian plane, v_c.e_t = 0);
+- in the meridian plane: v_c + omega_w (dr e_z - dz e_r) (= v_c - omega_w e_t x (X - c));
   its component along a adds to the lateral slip s_l of the 2-D slip (the skew's own, psi times
   lateral_slip_rate, keeps the spin's surface speed: psi' x in it is second order, psi psi'); its
   component along n (squeeze) is not a slip: the contact damping of the normal chart takes it.
@@ -119,7 +119,7 @@ The rib takes the same rates on its 2-D slip (s, s_b), s_b along b = n_rib x e_t
 The entrainment speed of the transit time 2 b / u is the mean speed of the surfaces relative to the
 contact point (Reynolds' equation in the frame of a moving contact, as for a cam and follower): the
 contact lies at the azimuth f psi (lateral_slip_rate; psi x_end / r_centre at the rib) and moves
-along e_t at X_r f psi', so u = 1/2 |v1 + v2 + psi' (x - 2 X_r f) + V_t|. The film itself (thickness,
+along e_t at X_r f psi', so u = 1/2 |v1 + v2 + psi' (x - 2 X_r f)|. The film itself (thickness,
 load share, thermal viscosity, lubrication_state) stays that of the spins, refreshed per window; the
 lateral slip of the rates does not enter the shear heating.
 
@@ -617,7 +617,7 @@ def roller_friction(j, wR, psi, wc, wi, case, ev):
     the pocket friction (:func:`pocket_friction`) under the quasi-static pocket force, the
     tangential force F_cage = F_D - F_t that holds the roller on its orbit at the cage speed.
     """
-    roller_traction(j, wR, psi, RollerRates(0.0, 0.0, 0.0, 0.0), wc, wi, case, ev)
+    roller_traction(j, wR, psi, NO_RATES, wc, wi, case, ev)
     FD = roller_drag(wc, case.frames.Cen[j, 0], case.par, ev)
     return pocket_friction(FD - ev[EV_FT], wR, case.par, case.bearing.rho_m, ev)
 
@@ -661,7 +661,7 @@ def pocket_friction(F_cage, wR, par, rho_m, ev):
 def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
     """Raceway and rib tractions and rolling resistance of roller j, orbiting at wc [rad/s], at
     roller speed wR [rad/s], skew psi [rad] and the rates ``rates`` (:data:`RollerRates`: skew and
-    tilt rate, centre and inner-ring velocities; all 0 in the quasi-static solution), inner-ring
+    tilt rate, centre velocity; all 0 in the quasi-static solution), inner-ring
     speed wi [rad/s] (film and frames of ``case``): fills ``ev`` (NEV,) without drag and cage
     pocket (:func:`roller_friction` adds them; the dynamic solver its own pocket force).
 
@@ -719,7 +719,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             ar = -nz                                             # a = n x e_t in (r, z)
             az = nr
             # rates (module docstring, "Rates"; rigid body v = v_c + Omega x (X - c)): the slip
-            # along e_t gains psi' x - V_t, along a the in-plane relative velocity sl_rate [mm/s]
+            # along e_t gains psi' x, along a the in-plane relative velocity sl_rate [mm/s]
             # (rate_slip); the skew rate adds psi' v'.n to the spin about n and psi' v'.a to the
             # rolling about a, the tilt rate (about w'' = -e_t) neither. All 0 at a steady state
             # and in the quasi-static solution.
