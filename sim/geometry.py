@@ -202,7 +202,7 @@ class Geometry:
     #: roller end / rib contact model, "sphere" or "torus" (config bearing.roller_end; "" for a TSRB)
     roller_end: str = ""
     roller_end_edge_radius: float = np.nan   # mm, r_k of the torus
-    rib_opening_angle: float = np.nan        # rad (configured in deg)
+    rib_opening_angle: float = np.nan        # deg, as configured
     arrays: dict = field(default_factory=dict, compare=False, repr=False)
 
     # ------------------------------------------------------------------ construction
@@ -234,8 +234,6 @@ class Geometry:
             err.key, err.rule, err.limit = "bearing.alpha", None, None
             raise err
         extra = {k: (str(b[k]) if k == "roller_end" else float(b[k])) for k in own if b.get(k) is not None}
-        if kind == "TRB":
-            extra["rib_opening_angle"] = float(np.radians(extra["rib_opening_angle"]))
         if kind == "TSRB":  # per-point osculations default to kappa (thesis 8.2; sim.config_schema)
             extra.update({k: extra["kappa"] for pair in OSCULATION_KEYS for k in pair if k not in extra})
         gamma = taper_angle(alpha, Dwe, Dpw)
@@ -272,7 +270,7 @@ class Geometry:
 
     def _with(self, *names):
         """'Dpw = 60.0, Dwe = 10.0': the given keys with their values (angles in deg, as configured)."""
-        shown = {"alpha": float(np.degrees(self.alpha)), "rib_opening_angle": float(np.degrees(self.rib_opening_angle))}
+        shown = {"alpha": float(np.degrees(self.alpha))}
         return ", ".join(f"{n} = {shown.get(n, getattr(self, n))!r}" for n in names)
 
     def _check(self):
@@ -315,13 +313,12 @@ class Geometry:
                      f"large enough that both roller end radii exceed 0.1 Dwe = {0.1 * self.Dwe:.3f} mm "
                      f"(now {rho_ends.min():.3f} mm)", "end_radii", self._with("Lwe", "Dwe", "alpha", "Dpw"))
         elif self.roller_end == "torus":
-            _require(self._torus_rim(self.roller_end_edge_radius) > 0.0, "roller_end_edge_radius",
+            _require(self.roller_end_edge_radius < self._torus_edge_limit(), "roller_end_edge_radius",
                      self.roller_end_edge_radius,
                      f"< {self._torus_edge_limit():.4f} mm, where the edge radius would leave no flat end face",
                      "torus_face", self._with("Dwe", "Lwe", "alpha", "Dpw"), self._torus_edge_limit())
             limit = self._torus_opening_limit()
-            _require(self._torus_rib(self.rib_opening_angle)["Rx"] > 0.0, "rib_opening_angle",
-                     float(np.degrees(self.rib_opening_angle)),
+            _require(self.rib_opening_angle > np.degrees(limit), "rib_opening_angle", self.rib_opening_angle,
                      f"> {np.degrees(limit):.4f} deg: at smaller angles the roller end's circumference is flatter "
                      "than the cone rib's, so it would touch the rib at two points off the meridian plane, not at "
                      "one point of its edge", "torus_rib_convex",
@@ -581,7 +578,7 @@ class Geometry:
         """
         half = 0.5 * self.Lwe
         if self.roller_end == "torus":
-            t = self._torus_rib(self.rib_opening_angle)
+            t = self._torus_rib(np.radians(self.rib_opening_angle))
             rib = np.array([t["c_x"], -t["a"], self.roller_end_edge_radius, t["n_x"], t["n_y"], t["Rx"]])
             return rib, np.array([t["R_n"], t["x_n"], t["Rx"], self.roller_end_edge_radius])
         R_end = self.roller_end_radius_ratio * (self.apex_distance + half)

@@ -65,8 +65,10 @@ order in psi:
   meridian-plane load on the roller (EV_FU, EV_FV, EV_MW: fed back into the load distribution
   with the cage pocket friction, ``roller_loads``); its power -F_l s_l is ``sliding`` and is
   reported on its own (EV_PSKEW, output ``skew_sliding``); its moment about u'' (first order in
-  psi) enters the roller's spin balance; it has no z-moment. Lateral slip at the rib, and the
-  heating of the lateral slip in the film temperature, are neglected;
+  psi) enters the roller's spin balance; it has no z-moment. Lateral slip at the rib: the same
+  kinematics for the torus roller end (its power is ``rib``), neglected for the sphere (whose
+  contact slides about five times faster along e_t); the heating of the lateral slip in the film
+  temperature is neglected;
 - moment about the skew axis v' (EV_MS): x F_t of every slice (x = (X - c).u'), M_n (v'.n),
   the rolling couple's v' component, the rib traction at x_rib, and the normal loads turned with
   the contact points: -Q psi f (X_r (n_z v_r - n_r v_z) + n_r (d_r v_z - d_z v_r)), each normal
@@ -247,6 +249,8 @@ ContactLoads = namedtuple("ContactLoads", [
                     # sim.physics.contact.hertz_point_radii(R_t, R_m)[1:]: R_area [mm], the radius of the
                     # circle of the Hertz contact's area, and kappa [1], its semi-axis along e_t over the other
     "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
+    "rib_skew_slip",  # bool: the rib contact slips laterally with the skew (the torus; the sphere model
+                      # leaves it out, docs/roller_end_torus.md)
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
     "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.coupled_slice_loads)
 ])
@@ -843,6 +847,12 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         bz = nr
         st_rate, sb = rate_slip(rates, dr, dz, br, bz, ur, uz)
         st = v1 - v2 + st_rate
+        skew_slip = psi != 0.0 and case.bearing.rib_skew_slip
+        if skew_slip:
+            # the torus's lateral slip of the skew along b (docs/roller_end_torus.md): the slices'
+            # lateral_slip_rate, a surface of revolution about the roller axis touching one about the
+            # bearing axis (its azimuth factor is x_n / r_centre)
+            sb += psi * lateral_slip_rate(v1, Xrib[j, 0], dr, dz, nr, nz, ur, uz, vr, vz)[0]
         # Hertz semi-axis along e_t [mm]: area Q / p = pi a_t a_m, a_t / a_m = kappa (1 for a circle)
         a_rib = np.sqrt(Qrib[j] * case.bearing.rib_end[5] / (np.pi * prib))
         # entrainment relative to the contact point, whose azimuth psi x_n / r_centre (below)
@@ -868,6 +878,16 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             ev[EV_FV] += Fb * (vr * br + vz * bz)
             ev[EV_MW] += Fb * (dr * bz - dz * br)
             ev[EV_RIB] -= Fb * sb
+            if skew_slip:
+                # its moment about the skewed axis u' + psi e_t at the turned contact point (first
+                # order in psi, as the slices' F_l), and the e_t component f psi b_r of b turned to
+                # the contact point's meridian plane (no z-moment: b lies in that plane), which the
+                # roller's orbit takes with the normal load's (the lever f = x_n / r_centre is ~-7 at
+                # the torus rib, ~0.2 at a slice, whose F_l leaves it out)
+                f = x_n / r_centre
+                ev[EV_MU] += Fb * psi * ((dz * br - dr * bz) + f * Xrib[j, 0] * (bz * ur - br * uz)
+                                         + f * br * (dr * uz - dz * ur))
+                ev[EV_FT] += Fb * psi * f * br
         if psi != 0.0:
             # the rib load -Q_rib n along the normal, which meets the skewed roller axis at x_n (the
             # end-sphere centre; for the torus docs/roller_end_torus.md): the contact point and that
