@@ -81,7 +81,11 @@ def body_and_state(model, friction, op, dyn, raw, kin):
 
 def quasi_static_start(model, friction, op):
     """The combined quasi-static solution of one case (as :func:`sim.api.simulation.solve_case`):
-    (raw solve output, friction evaluation); RuntimeError when it does not converge."""
+    (raw solve output, friction evaluation); RuntimeError when its load distribution or kinematics
+    do not converge. A friction-load fixed point that does not settle (``coupling_converged``
+    False: skewed rollers flipping between their pocket walls from pass to pass) still gives the
+    start, its last pass: the start is an initial state, and the run's own steady-state detector
+    decides (such a run reports no steady state, README)."""
     raw, fr = coupled_solution(model, friction, op)
     if fr is None or not (raw["converged"] and fr["friction_converged"]):
         raise RuntimeError(f"the quasi-static start of the dynamic run did not converge at {op}")

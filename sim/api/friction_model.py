@@ -275,10 +275,12 @@ def coupled_solution(model, friction, op):
     ``friction.load_coupling_tolerance`` x the largest roller load (the moments over Lwe) between
     passes, at most ``friction.load_coupling_passes`` passes.
 
-    Returns (raw, fr): the last solve and the friction evaluation at it. ``fr`` is None when the
-    first solve did not converge; ``fr["friction_converged"]`` is False when a kinematic solve,
-    a load solve with the friction loads or the fixed point did not converge (the case is then
-    recorded as unconverged).
+    Returns (raw, fr): the last solve and the friction evaluation at it, with
+    ``fr["coupling_converged"]`` whether the fixed point settled (it may not: a skewed TSRB whose
+    skew moment changes sign with the loads its own lateral tractions cause flips its rollers
+    between the pocket walls from pass to pass). ``fr`` is None when the first solve did not
+    converge; ``fr["friction_converged"]`` is False when a kinematic solve or a load solve with the
+    friction loads did not converge.
     """
     raw = model.solve(op)
     if not raw["converged"]:
@@ -291,14 +293,12 @@ def coupled_solution(model, friction, op):
 
     for _ in range(friction.load_coupling_passes):
         if not fr["friction_converged"]:
-            return raw, fr
+            return raw, fr | {"coupling_converged": False}
         applied = loads(fr)
         raw = model.solve(op, roller_loads=fr["roller_loads"], ring_loads=fr["ring_loads"], start=raw)
         if not raw["converged"]:
-            return raw, fr | {"friction_converged": False}
+            return raw, fr | {"friction_converged": False, "coupling_converged": False}
         fr = friction.evaluate(op, raw, start=fr["kinematics"])
-        change = np.abs(loads(fr) - applied).max() if fr["friction_converged"] else np.inf
-        if change <= friction.load_coupling_tolerance * raw["Q"].max():
-            return raw, fr
-    return raw, fr | {"friction_converged": False}
-
+        if fr["friction_converged"] and np.abs(loads(fr) - applied).max() <= friction.load_coupling_tolerance * raw["Q"].max():
+            return raw, fr | {"coupling_converged": True}
+    return raw, fr | {"coupling_converged": False}

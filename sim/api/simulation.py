@@ -82,7 +82,7 @@ def solve_case(model, friction, op, output_cfg):
     if fr is None:
         return case_results(model, op, raw, output_cfg)
     res = case_results(model, op, raw, output_cfg)
-    if not (res["converged"] and fr.pop("friction_converged")):
+    if not (res["converged"] and fr.pop("friction_converged") and fr.pop("coupling_converged")):
         return {key: res[key] for key in ("iterations", "wall_time", "P", "P0")} | {"converged": False}
     fr.pop("roller_loads")
     fr.pop("ring_loads")

@@ -145,3 +145,19 @@ def test_friction_load_coupling_iterates_to_its_tolerance_or_reports_unconverged
     print(f"torque error against tolerance 1e-7: default {err_default:.2e}, 1e-3 {err_loose:.2e}")
     assert err_default < 1e-4
     assert err_default < err_loose
+
+
+def test_a_skew_that_flips_with_its_own_loads_is_reported_unconverged():
+    """A pinion TSRB design of the tiny study (README, dynamic solver: PCR 24.3, kappa 0.927, aP
+    13.5, aPk 9.45, alpha 28.1, 10 slices) at 35 kN with skew: its rollers rest on one pocket wall
+    (+0.36 deg), their lateral tractions push the inner ring by +1.0 kN, and at the loads that gives
+    the skew moment turns them onto the other wall (-0.36 deg, -1.1 kN), and back: the friction
+    loads never settle. The case is recorded as unconverged, not returned at one of the two walls
+    (the one-pass coupling before 3d3892b returned the first); the same design without skew converges."""
+    import sim
+
+    design = ["bearing=tsrb_pinion", *PINION_SKEW, "bearing.PCR=24.3", "bearing.kappa=0.927", "bearing.aP=13.5",
+              "bearing.aPk=9.45", "bearing.alpha=28.1", "solver.n_slices=10"]
+    flipping = sim.simulate(sim.load_config(design)).isel(design=0, case=0)
+    assert not bool(flipping.converged)
+    assert bool(sim.simulate(sim.load_config(design + ["friction.skew.enabled=false"])).isel(design=0, case=0).converged)
