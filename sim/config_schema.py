@@ -303,6 +303,8 @@ class FrictionConfig:
     max_iterations: Any = key(Number(1, 10000, integer=True))
     tolerance: Any = key(Number(1e-14, 1e-2, low_open=True))
     seed_tolerance_factor: Any = key(Number(1.0, 1e4))
+    load_coupling_tolerance: Any = key(Number(0.0, 1e-2, low_open=True))
+    load_coupling_passes: Any = key(Number(1, 100, integer=True))
     drag: DragConfig = field(default_factory=DragConfig)
     skew: SkewConfig = field(default_factory=SkewConfig)
 

@@ -203,7 +203,7 @@ class BearingModel:
         approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * APPROACH_LOG_TERM
         return np.array([approach / np.sin(g.alpha), 0.0])
 
-    def solve(self, op: OperatingPoint, roller_loads=None, start=None):
+    def solve(self, op: OperatingPoint, roller_loads=None, ring_loads=None, start=None):
         """Solve one case; returns a dict of plain arrays (kernel units) and the status.
 
         Parameters
@@ -222,6 +222,13 @@ class BearingModel:
             None means zeros. Loads on rollers the rings do not squeeze are ignored (the cage
             holds them). Unequal loads on rollers psi and -psi switch off the mirror symmetry
             (all Z rollers are solved); the ring's balance along y is not part of the model.
+        ring_loads : array_like (Z, 2), optional
+            External load on the inner ring at each roller (the reaction of the friction of that
+            roller's inner-raceway and rib contacts, :func:`sim.physics.friction.friction_loads`)
+            in the roller's meridian plane: [0] along e_r [N], [1] along e_z [N]. The ring balances
+            them with Fa and Fr: they are added to Fa (their sum along z) and Fr (their sum along x,
+            sum of [0] cos(psi_j); exactly 0 when all rollers carry the same, the axisymmetric
+            case). None means zeros.
         start : dict, optional
             A converged result of ``solve`` for the same ``op`` (other roller loads): its ring
             displacement, poses and slice loads are the start (a warm start of a few
@@ -252,6 +259,17 @@ class BearingModel:
             ext = np.ascontiguousarray(roller_loads, dtype=float)
             if ext.shape != (g.Z, 3) or not np.all(np.isfinite(ext)):
                 raise InputError(f"roller_loads must be a finite array of shape ({g.Z}, 3), got shape {ext.shape}")
+        Fa, Fr = op.Fa, op.Fr
+        if ring_loads is not None:
+            ring_ext = np.asarray(ring_loads, dtype=float)
+            if ring_ext.shape != (g.Z, 2) or not np.all(np.isfinite(ring_ext)):
+                raise InputError(f"ring_loads must be a finite array of shape ({g.Z}, 2), got shape {ring_ext.shape}")
+            Fa += float(ring_ext[:, 1].sum())
+            if np.any(ring_ext[:, 0] != ring_ext[0, 0]):
+                Fr += float(ring_ext[:, 0] @ np.cos(2.0 * np.pi * np.arange(g.Z) / g.Z))
+            if Fa <= 0.0 or Fr < 0.0:
+                raise InputError(f"the friction loads on the inner ring reverse the applied load: Fa {op.Fa} N -> {Fa} N, "
+                                 f"Fr {op.Fr} N -> {Fr} N (allowed: Fa > 0, Fr >= 0)")
         problem = QuasiStaticProblem(self.bearing, self.elasticity, self.newton, self.body_loads(op))
         rollers = RollerSet(np.zeros((g.Z, 3)), np.zeros((g.Z, 2, n)), np.zeros((g.Z, 2, n), dtype=np.bool_),
                             np.zeros((g.Z, 2)), np.zeros(g.Z), np.zeros((g.Z, 4)), empty_frames(g.Z, n),
@@ -277,15 +295,15 @@ class BearingModel:
             poses[:] = start["poses"]
             q[:] = start["line_load"]
             active[:] = q > 0.0
-            converged = run(op.Fa, op.Fr, tilt_rad, ring, True)
+            converged = run(Fa, Fr, tilt_rad, ring, True)
             iterations = reports[-1].iterations
             steps = 1
         if not converged:
             ring = self.initial_ring(op)
-            converged = run(op.Fa, op.Fr, tilt_rad, ring, False)
+            converged = run(Fa, Fr, tilt_rad, ring, False)
             iterations += reports[-1].iterations
             steps += 1
-        if not converged and s.continuation_steps > 1 and (op.Fr > 0.0 or tilt_rad != 0.0 or np.any(ext_case != 0.0)):
+        if not converged and s.continuation_steps > 1 and (Fr > 0.0 or tilt_rad != 0.0 or np.any(ext_case != 0.0)):
             # continuation (Allgower & Georg 2003, Introduction to Numerical Continuation Methods,
             # ch. 1): from the axisymmetric case (Fa alone, solved with the ring under load
             # control) to the case along lam in [0, 1] (Fr, tilt and roller loads times lam), each
@@ -295,14 +313,14 @@ class BearingModel:
             lam, dlam = 0.0, CONTINUATION_FIRST_STEP
             ring = self.initial_ring(OperatingPoint(op.Fa, 0.0, op.speed_rpm, 0.0, op.oil_temperature))
             ext[:] = 0.0
-            ok = run(op.Fa, 0.0, 0.0, ring, False)
+            ok = run(Fa, 0.0, 0.0, ring, False)
             iterations += reports[-1].iterations
             steps += 1
             while ok and lam < 1.0 and steps < 2 * s.continuation_steps:
                 saved = (lam, ring.copy(), poses.copy(), q.copy(), active.copy())
                 trial = min(1.0, lam + dlam)
                 ext[:] = trial * ext_case
-                ok = run(op.Fa, trial * op.Fr, trial * tilt_rad, ring, True)
+                ok = run(Fa, trial * Fr, trial * tilt_rad, ring, True)
                 iterations += reports[-1].iterations
                 steps += 1
                 if ok:

@@ -10,8 +10,8 @@ import numpy as np
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
 from sim.physics.contact import hertz_point_radii
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, NC, NEV, ContactLoads, FilmState,
-                                  FrictionCase, FrictionParams, width_quadrature)
+from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z, FL_U, FL_W, NC, NEV,
+                                  NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.symmetry import symmetry_classes
 from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_friction
@@ -89,6 +89,8 @@ class FrictionModel:
         self.tolerance = float(friction["tolerance"])
         self.max_iterations = int(friction["max_iterations"])
         self.seed_tolerance_factor = float(friction["seed_tolerance_factor"])
+        self.load_coupling_tolerance = float(friction["load_coupling_tolerance"])
+        self.load_coupling_passes = int(friction["load_coupling_passes"])
         drag = friction["drag"]
         model = str(drag["model"])
         mu_s = float(friction["solid_friction_coefficient"])
@@ -201,7 +203,8 @@ class FrictionModel:
 
         Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
         cage speed rpm; with ``friction.skew`` also ``roller_skew`` (Z,) deg and ``skew_sliding``
-        N mm), ``friction_converged``, the friction ``roller_loads`` (Z, 3) [N, N, N mm] and
+        N mm), ``friction_converged``, the friction ``roller_loads`` (Z, 3) [N, N, N mm] and their
+        reaction ``ring_loads`` (Z, 2) [N] (:meth:`sim.api.bearing_model.BearingModel.solve`), and
         ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s], psi (Z,) [rad],
         :data:`sim.solvers.kinematics.KinematicJacobian`).
 
@@ -216,13 +219,14 @@ class FrictionModel:
         par = case.par
         totals = np.zeros(NEV)
         # cage pocket friction on each roller, force along v', and with skew the lateral raceway
-        # tractions (sim.physics.friction.cage_pocket_loads): the friction loads the quasi-static
-        # balance takes back (BearingModel.solve(op, roller_loads))
-        roller_loads = np.zeros((g.Z, 3))
-        wc, converged = solve_friction(pb.wc, wR, psi, wi, pb.fresh, case, settings, totals, roller_loads, pb.jac)
+        # tractions, and their reaction on the inner ring (sim.physics.friction.cage_pocket_loads):
+        # the friction loads the quasi-static balance takes back (BearingModel.solve(op,
+        # roller_loads, ring_loads))
+        loads = np.zeros((g.Z, NFL))
+        wc, converged = solve_friction(pb.wc, wR, psi, wi, pb.fresh, case, settings, totals, loads, pb.jac)
         wR[:] = wR[source]
         psi[:] = psi[source]
-        roller_loads[:] = roller_loads[source]
+        loads[:] = loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
         srr, film_um, lam = film_outputs(case, load, wc, wR, wi)
         if static:   # power / speed is the same at any speed (Coulomb friction): that of the nominal speed
@@ -246,7 +250,8 @@ class FrictionModel:
             "film_thickness": film_um,
             "lambda_ratio": lam,
             "cage_speed": wc * RPM_PER_RAD_S,
-            "roller_loads": roller_loads,
+            "roller_loads": loads[:, FL_U:FL_W + 1].copy(),
+            "ring_loads": loads[:, FL_RING_R:FL_RING_Z + 1].copy(),
             "kinematics": (wc, wR.copy(), psi.copy(), pb.jac),
         } | ({"roller_skew": np.degrees(psi), "skew_sliding": float(skew_sliding)} if par.skew else {})
 
@@ -272,3 +277,40 @@ def film_outputs(case, load, wc, wR, wi):
     kmax = np.argmax(q[j], axis=1)
     lam = np.array([film.h[j, s, kmax[s]] / case.par.sigma for s in range(2)])
     return srr, film_um, lam
+
+
+def coupled_solution(model, friction, op):
+    """Load distribution and friction of one case with the friction loads fed back: the friction
+    loads on the rollers and their reaction on the inner ring (:meth:`FrictionModel.evaluate`:
+    ``roller_loads``, ``ring_loads``) enter :meth:`sim.api.bearing_model.BearingModel.solve`, whose
+    solution gives the next friction loads; a fixed-point iteration until they change by less than
+    ``friction.load_coupling_tolerance`` x the largest roller load (the moments over Lwe) between
+    passes, at most ``friction.load_coupling_passes`` passes.
+
+    Returns (raw, fr): the last solve and the friction evaluation at it, with
+    ``fr["coupling_converged"]`` whether the fixed point settled (it may not: a skewed TSRB whose
+    skew moment changes sign with the loads its own lateral tractions cause flips its rollers
+    between the pocket walls from pass to pass). ``fr`` is None when the first solve did not
+    converge; ``fr["friction_converged"]`` is False when a kinematic solve or a load solve with the
+    friction loads did not converge.
+    """
+    raw = model.solve(op)
+    if not raw["converged"]:
+        return raw, None
+    fr = friction.evaluate(op, raw)
+    Lwe = model.geometry.Lwe
+
+    def loads(res):
+        return np.hstack([res["roller_loads"][:, :2], res["roller_loads"][:, 2:] / Lwe, res["ring_loads"]])
+
+    for _ in range(friction.load_coupling_passes):
+        if not fr["friction_converged"]:
+            return raw, fr | {"coupling_converged": False}
+        applied = loads(fr)
+        raw = model.solve(op, roller_loads=fr["roller_loads"], ring_loads=fr["ring_loads"], start=raw)
+        if not raw["converged"]:
+            return raw, fr | {"friction_converged": False, "coupling_converged": False}
+        fr = friction.evaluate(op, raw, start=fr["kinematics"])
+        if fr["friction_converged"] and np.abs(loads(fr) - applied).max() <= friction.load_coupling_tolerance * raw["Q"].max():
+            return raw, fr | {"coupling_converged": True}
+    return raw, fr | {"coupling_converged": False}

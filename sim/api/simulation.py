@@ -29,7 +29,7 @@ from omegaconf import OmegaConf
 from sim.api.bearing_model import BearingModel, SolverSettings, case_results
 from sim.api import dynamic_model
 from sim.api.cases import operating_points
-from sim.api.friction_model import FrictionModel
+from sim.api.friction_model import FrictionModel, coupled_solution
 from sim.api.processes import worker_pool
 from sim.api.schema import validate
 from sim.errors import InputError
@@ -76,20 +76,16 @@ def solve_case(model, friction, op, output_cfg):
     kinematics converged; otherwise only its status and the load-derived P, P0 are kept.
     """
     t0 = time.perf_counter()
-    raw = model.solve(op)
-    if friction is None or not raw["converged"]:
+    if friction is None:
+        return case_results(model, op, model.solve(op), output_cfg)
+    raw, fr = coupled_solution(model, friction, op)
+    if fr is None:
         return case_results(model, op, raw, output_cfg)
-    fr = friction.evaluate(op, raw)
-    if fr["friction_converged"]:
-        # friction loads on the rollers (cage pocket) enter the load distribution; one
-        # fixed-point pass: they are 1e-3 of the contact loads, so a second pass changes the
-        # result below the solver tolerance
-        raw = model.solve(op, roller_loads=fr["roller_loads"], start=raw)
-        fr = friction.evaluate(op, raw, start=fr["kinematics"]) if raw["converged"] else {"friction_converged": False}
     res = case_results(model, op, raw, output_cfg)
-    if not (res["converged"] and fr.pop("friction_converged")):
+    if not (res["converged"] and fr.pop("friction_converged") and fr.pop("coupling_converged")):
         return {key: res[key] for key in ("iterations", "wall_time", "P", "P0")} | {"converged": False}
     fr.pop("roller_loads")
+    fr.pop("ring_loads")
     fr.pop("kinematics")
     res.update(fr)
     res["wall_time"] = time.perf_counter() - t0

@@ -94,7 +94,7 @@ Rates (the dynamic solver, :data:`RollerRates`; all zero in the quasi-static sol
 kernels then do exactly the arithmetic they did without them). The roller moves as a rigid body,
 v(P) = v_c + Omega x (P - c), with Omega relative to its meridian frame (which orbits with it)
 = omega_R u'' + psi' v' + omega_w w'' (w'' = u'' x v' = -e_t + O(psi)); the inner ring's surface
-moves with its spin only (its translation is left out: below). At the slice's contact point X, with x = (X - c).u',
+moves with its spin and its translation V. At the slice's contact point X, with x = (X - c).u',
 (dr, dz) = X - c [mm], rates in rad/s and mm/s, the relative velocity roller - ring gains, first
 order in psi as the skew model:
 
@@ -112,15 +112,16 @@ on the roller F_l a through EV_FU, EV_FV at the centre and its moment about w'' 
 about v' (EV_MS); so their power on the rates, F_t psi' x + F_l (s_l - psi lateral_slip_rate), is
 exactly the rates' share of the slip power F_t s + F_l s_l whose negative the loss channels count
 (virtual power; tests/dynamic/test_slip_rates.py, and the dynamic solver's energy balance closes to
-its integration tolerance, tests/dynamic/test_ladder.py). Not modelled: the inner ring's own
-translation velocity in the slip, and with it the reaction of the inner-ring tractions on the ring
-(both or neither, for the power balance); the quasi-static ring balance does not take that reaction
-either (its friction loads act on the rollers only). The axial sum of the inner-race tractions is
-about 3 % of the load at the pinion case (1.0 kN of 35 kN, TRB 31313; README, dynamic solver).
+its integration tolerance, tests/dynamic/test_ladder.py). The inner-ring contacts' tractions react
+on the inner ring (EV_RING_R, EV_RING_T, EV_RING_Z), whose translation V is in the slip; their power
+on V, -F_t V_t - F_l V.a, closes the same balance. Both solvers apply that reaction: the
+quasi-static ring balance its e_r, e_z parts (:func:`friction_loads`, with the friction loads on the
+rollers; the axial sum is 1.0 kN of 35 kN for the skewed TRB 31313 at the pinion case), the dynamic
+solver all three on the ring's translation, whose velocity it passes as V.
 The rib takes the same rates on its 2-D slip (s, s_b), s_b along b = n_rib x e_t in the meridian plane.
 The entrainment speed of the transit time 2 b / u is the mean speed of the surfaces relative to the
 contact point (Reynolds' equation in the frame of a moving contact, as for a cam and follower): the
-contact lies at the azimuth f psi (lateral_slip_rate; psi x_end / r_centre at the rib) and moves
+contact lies at the azimuth f psi (lateral_slip_rate; psi x_n / r_centre at the rib) and moves
 along e_t at X_r f psi', so u = 1/2 |v1 + v2 + psi' (x - 2 X_r f)|. The film itself (thickness,
 load share, thermal viscosity, lubrication_state) stays that of the spins, refreshed per window; the
 lateral slip of the rates does not enter the shear heating.
@@ -162,9 +163,18 @@ EV_P0 = 4
 EV_MS = EV_P0 + NC
 EV_FU, EV_FV, EV_MW = EV_MS + 1, EV_MS + 2, EV_MS + 3
 EV_PSKEW = EV_MS + 4
-NEV = EV_PSKEW + 1
+# then the friction force of the inner-ring raceway and rib contacts on the inner ring along e_r, e_t,
+# e_z of the roller's meridian frame [N] (the reaction of their tractions on the roller, module
+# docstring "Rates")
+EV_RING_R, EV_RING_T, EV_RING_Z = EV_PSKEW + 1, EV_PSKEW + 2, EV_PSKEW + 3
+NEV = EV_RING_Z + 1
+# FRICTION_LOADS, friction loads of a roller's contacts in the quasi-static balance (:func:`friction_loads`): on the
+# roller along u', v' [N] and about u' x v' [N mm] (BearingModel.solve's roller_loads), then on the
+# inner ring along e_r, e_z of the roller's meridian plane [N] (its ring_loads)
+FL_U, FL_V, FL_W, FL_RING_R, FL_RING_Z = range(5)
+NFL = 5
 
-# Rates of a roller that move its contact surfaces besides the spins (the
+# Rates of a roller and of the inner ring that move the contact surfaces besides the spins (the
 # dynamic solver's state; all zero in the quasi-static solution, :data:`NO_RATES`), read by
 # :func:`roller_traction` (numba-supported named tuple; module docstring, "Rates"):
 RollerRates = namedtuple("RollerRates", [
@@ -172,8 +182,11 @@ RollerRates = namedtuple("RollerRates", [
     "omega_w",      # rad/s, tilt rate: that angular velocity about w'' = u'' x v' (theta' cos(psi); -e_t at psi = 0)
     "vc_r",         # mm/s, roller centre velocity in its meridian frame (orbiting with it) along e_r
     "vc_z",         # mm/s, ... along e_z (no e_t component: the frame orbits with the roller)
+    "vi_r",         # mm/s, inner-ring translation velocity at the roller's azimuth along e_r
+    "vi_t",         # mm/s, ... along e_t
+    "vi_z",         # mm/s, ... along e_z
 ])
-NO_RATES = RollerRates(0.0, 0.0, 0.0, 0.0)
+NO_RATES = RollerRates(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 
 # Friction parameters of one case (numba-supported named tuple; built by
 # sim.api.friction_model.FrictionModel from the config, the per-case fields with ``_replace``).
@@ -603,19 +616,23 @@ def pocket_skew_couple(psi, par):
 
 
 @kernel
-def rate_slip(rates, dr, dz, ar, az, ur, uz):
-    """Slip of the roller against a ring at a contact point from the roller's rates (module
-    docstring, "Rates"): (along e_t, along a) [mm/s], to add to the spins' slip.
+def rate_slip(rates, inner, dr, dz, ar, az, ur, uz):
+    """Slip of the roller against a ring at a contact point from the roller's and the inner ring's
+    rates (module docstring, "Rates"): (along e_t, along a) [mm/s], to add to the spins' slip.
 
-    rates: :data:`RollerRates` [rad/s, mm/s]; (dr, dz): contact point X - c from the roller
+    rates: :data:`RollerRates` [rad/s, mm/s]; inner: the ring is the inner ring (its translation
+    moves its surface; the outer ring is fixed); (dr, dz): contact point X - c from the roller
     centre [mm]; (ar, az): in-plane tangent a = n x e_t of the surface there; (ur, uz): roller
     axis u'. Rigid body v = v_c + Omega x (X - c), Omega = psi' v' + omega_w w'' besides the spin,
     w'' = -e_t (first order in psi): along e_t psi' v' x (X - c) = psi' x e_t, x = (X - c).u'; in
-    the meridian plane v_c - omega_w e_t x (X - c) = v_c + omega_w (dr e_z - dz e_r). The part
-    along the normal n (squeeze) is not returned.
+    the meridian plane v_c - omega_w e_t x (X - c) = v_c + omega_w (dr e_z - dz e_r); less the inner
+    ring's translation V. The part along the normal n (squeeze) is not returned.
     """
-    s_t = rates.psi_dot * (ur * dr + uz * dz)
-    s_a = (rates.vc_r - rates.omega_w * dz) * ar + (rates.vc_z + rates.omega_w * dr) * az
+    ring_r = rates.vi_r if inner else 0.0
+    ring_t = rates.vi_t if inner else 0.0
+    ring_z = rates.vi_z if inner else 0.0
+    s_t = rates.psi_dot * (ur * dr + uz * dz) - ring_t
+    s_a = (rates.vc_r - rates.omega_w * dz - ring_r) * ar + (rates.vc_z + rates.omega_w * dr - ring_z) * az
     return s_t, s_a
 
 
@@ -636,13 +653,19 @@ def roller_friction(j, wR, psi, wc, wi, case, ev):
 
 @internal_kernel
 def friction_loads(ev, F_pocket, out):
-    """Friction loads on a roller in its meridian plane [N, N mm], the layout of the quasi-static
-    roller loads (along u', along v', about u' x v'), from its :func:`roller_friction` evaluation
-    ``ev`` and the pocket friction force F_pocket [N] it returned: that force along v' (module
-    docstring) and, with skew, the lateral raceway tractions (written to ``out`` (3,))."""
-    out[0] = ev[EV_FU]
-    out[1] = F_pocket + ev[EV_FV]
-    out[2] = ev[EV_MW]
+    """Friction loads of a roller's contacts in its meridian plane (layout :data:`FRICTION_LOADS`),
+    from its :func:`roller_friction` evaluation ``ev`` and the pocket friction force F_pocket [N]
+    it returned, written to ``out`` (NFL,): on the roller, the quasi-static roller loads (along u',
+    along v' [N], about u' x v' [N mm]): the pocket force along v' (module docstring) and, with
+    skew, the lateral raceway and rib tractions; on the inner ring, the reaction of its raceway
+    and rib tractions along e_r and e_z [N] (its e_t part sums to no x-force over the mirror-
+    symmetric rollers of the quasi-static solution and has no place in its ring balance, which
+    has no y; module docstring, "Rates")."""
+    out[FL_U] = ev[EV_FU]
+    out[FL_V] = F_pocket + ev[EV_FV]
+    out[FL_W] = ev[EV_MW]
+    out[FL_RING_R] = ev[EV_RING_R]
+    out[FL_RING_Z] = ev[EV_RING_Z]
 
 
 @internal_kernel
@@ -681,7 +704,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
     z-moment on the outer ring [N mm], tangential contact force [N], then the powers [N mm/s]
     of COMPONENTS, then the friction moment about the skew axis (without the pocket couple,
     :func:`pocket_skew_couple`) [N mm], the lateral-traction loads (u', v' [N], u' x v' [N mm])
-    and the lateral-slip power [N mm/s] (EV_MS ... EV_PSKEW). Per slice (module
+    and the lateral-slip power [N mm/s] (EV_MS ... EV_PSKEW), then the force of the inner-ring
+    contacts' tractions on the inner ring (EV_RING_R ... EV_RING_Z) [N]. Per slice (module
     docstring) the width integral gives the tangential force F_t, the lateral force F_l (skew or
     in-plane rates, "Rates") and the spin moment M_n; -F_t s is split into sliding and drilling per
     contact, -F_l s_l is sliding.
@@ -707,6 +731,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
     psi_dot = rates.psi_dot
     for s in range(2):
         Om = -wc if s == 0 else wi - wc
+        ring_t = rates.vi_t if s == 1 else 0.0      # inner ring's translation along e_t [mm/s]
         F_sum = 0.0     # sum of F_t over the contact [N]
         P_slip = 0.0    # -sum F_t s [N mm/s]
         qs_sum = 0.0    # load-weighted sliding speed [N mm/s / mm]
@@ -735,7 +760,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             # (rate_slip); the skew rate adds psi' v'.n to the spin about n and psi' v'.a to the
             # rolling about a, the tilt rate (about w'' = -e_t) neither. All 0 at a steady state
             # and in the quasi-static solution.
-            st_rate, sl_rate = rate_slip(rates, dr, dz, ar, az, ur, uz)
+            st_rate, sl_rate = rate_slip(rates, s == 1, dr, dz, ar, az, ur, uz)
             st = v1 - v2 + st_rate
             ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - Om * nz   # spin about n
             wroll = wR * (ur * ar + uz * az) + psi_dot * (vr * ar + vz * az) - Om * az   # relative rolling about a
@@ -743,14 +768,14 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             # point (Reynolds' equation in the frame of a moving contact, whose Couette term carries
             # the surface speeds relative to it, as for a cam and follower), which lies at the azimuth
             # f psi (lateral_slip_rate) and so moves along e_t at X_r f psi':
-            # 1/2 ((v1 + psi' x - X_r f psi') + (v2 - X_r f psi')) [mm/s]
+            # 1/2 ((v1 + psi' x - X_r f psi') + (v2 + ring_t - X_r f psi')) [mm/s]
             rate = 0.0
             f = 0.0
-            if psi != 0.0 or psi_dot != 0.0:
+            if psi != 0.0 or psi_dot != 0.0 or ring_t != 0.0:
                 rate, f = lateral_slip_rate(v1, Xr, dr, dz, nr, nz, ur, uz, vr, vz)
             ue = v1 + v2
-            if psi_dot != 0.0:
-                ue += psi_dot * (x - 2.0 * Xr * f)
+            if psi_dot != 0.0 or ring_t != 0.0:
+                ue += psi_dot * (x - 2.0 * Xr * f) + ring_t
             t_transit = 2.0 * bk / max(0.5 * abs(ue), MIN_ENTRAINMENT_SPEED)   # [s]
             Ft = 0.0
             Mn = 0.0
@@ -799,6 +824,9 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
                 ev[EV_FU] += Fl * ua
                 ev[EV_FV] += Fl * va
                 ev[EV_MW] += Fl * (dr * az - dz * ar)
+                if s == 1:              # reaction on the inner ring
+                    ev[EV_RING_R] -= Fl * ar
+                    ev[EV_RING_Z] -= Fl * az
                 ev[EV_MU] += Fl * psi * ((dz * ar - dr * az) + f * Xr * (az * ur - ar * uz) + f * ar * (dr * uz - dz * ur))
                 ev[EV_PSKEW] -= Fl * sl
                 ev[EV_SLIDING] -= Fl * sl
@@ -816,6 +844,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             ev[EV_TZ] += tz
             if s == 0:
                 ev[EV_TOUT] -= tz                                # reaction on the outer ring
+            else:
+                ev[EV_RING_T] -= Ft                              # reaction on the inner ring
             ev[EV_FT] += Ft
             ev[EV_DRILLING] -= Mn * ws                           # spin power
             prr = Mrr * abs(wroll)                               # rolling-resistance power [N mm/s]
@@ -841,11 +871,11 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         dr = Xrib[j, 0] - cr
         dz = Xrib[j, 1] - cz
         x = ur * dr + uz * dz
-        # rates as the slices (rate_slip): along e_t, and in the meridian plane along
-        # b = n_rib x e_t [mm/s] (the part along n_rib, squeeze, left out)
+        # rates as the slices (rate_slip; the rib is on the inner ring): along e_t, and in the
+        # meridian plane along b = n_rib x e_t [mm/s] (the part along n_rib, squeeze, left out)
         br = -nz
         bz = nr
-        st_rate, sb = rate_slip(rates, dr, dz, br, bz, ur, uz)
+        st_rate, sb = rate_slip(rates, True, dr, dz, br, bz, ur, uz)
         st = v1 - v2 + st_rate
         skew_slip = psi != 0.0 and case.bearing.rib_skew_slip
         if skew_slip:
@@ -858,8 +888,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         # entrainment relative to the contact point, whose azimuth psi x_n / r_centre (below)
         # moves it along e_t at X_r x_n psi' / r_centre (as the slices)
         ue = v1 + v2
-        if psi_dot != 0.0:
-            ue += psi_dot * (x - 2.0 * Xrib[j, 0] * x_n / r_centre)
+        if psi_dot != 0.0 or rates.vi_t != 0.0:
+            ue += psi_dot * (x - 2.0 * Xrib[j, 0] * x_n / r_centre) + rates.vi_t
         t_transit = 2.0 * a_rib / max(0.5 * abs(ue), MIN_ENTRAINMENT_SPEED)
         # traction -g(|v|) v on the 2-D slip (st, sb) over the contact area Q / p [mm^2]
         v = abs(st) if sb == 0.0 else np.sqrt(st * st + sb * sb)
@@ -870,13 +900,16 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         ev[EV_TZ] += F * Xrib[j, 0]
         ev[EV_FT] += F
         ev[EV_RIB] -= F * st
+        ev[EV_RING_T] -= F
         if sb != 0.0:
             # in-plane force F_b b: on the roller along u', v' and about w'' (as the slices' F_l),
-            # its power -F_b s_b
+            # its reaction on the inner ring, its power -F_b s_b
             Fb = -g * sb * Qrib[j] / prib
             ev[EV_FU] += Fb * (ur * br + uz * bz)
             ev[EV_FV] += Fb * (vr * br + vz * bz)
             ev[EV_MW] += Fb * (dr * bz - dz * br)
+            ev[EV_RING_R] -= Fb * br
+            ev[EV_RING_Z] -= Fb * bz
             ev[EV_RIB] -= Fb * sb
             if skew_slip:
                 # its moment about the skewed axis u' + psi e_t at the turned contact point (first
@@ -888,6 +921,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
                 ev[EV_MU] += Fb * psi * ((dz * br - dr * bz) + f * Xrib[j, 0] * (bz * ur - br * uz)
                                          + f * br * (dr * uz - dz * ur))
                 ev[EV_FT] += Fb * psi * f * br
+                ev[EV_RING_T] -= Fb * psi * f * br
         if psi != 0.0:
             # the rib load -Q_rib n along the normal, which meets the skewed roller axis at x_n (the
             # end-sphere centre; for the torus docs/roller_end_torus.md): the contact point and that
@@ -900,12 +934,14 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
 
 @internal_kernel
 def cage_pocket_loads(wR, psi, wc, wi, active, case, loads):
-    """Friction loads on every active roller in its meridian plane [N, N mm], the layout of the
-    quasi-static roller loads (along u', along v', about u' x v'): the cage pocket friction force
-    mu_c F_cage sign(omega_R) along v' (module docstring), F_cage = F_D - F_t the tangential force
-    the cage supplies, and with skew psi (Z,) [rad] the lateral raceway tractions; at roller
+    """Friction loads of every active roller's contacts in its meridian plane [N, N mm]
+    (:func:`friction_loads`): on the roller the cage pocket friction force mu_c F_cage sign(omega_R)
+    along v' (module docstring), F_cage = F_D - F_t the tangential force the cage supplies, and
+    with skew psi (Z,) [rad] the lateral raceway tractions; on the inner ring the reaction of its
+    contacts' tractions; at roller
     speeds wR and cage speed wc [rad/s]. The friction load the quasi-static balance takes back
-    (BearingModel.solve(op, roller_loads)). ``loads`` (Z, 3) is written, zero for the inactive rollers.
+    (BearingModel.solve(op, roller_loads, ring_loads)). ``loads`` (Z, NFL) is written (layout
+    :data:`FRICTION_LOADS`, :func:`friction_loads`), zero for the inactive rollers.
     """
     ev = np.empty(NEV)
     for j in range(wR.shape[0]):

@@ -34,7 +34,8 @@ Equations (exact rigid-body dynamics, no small-angle step):
 - without skew (``body.skew`` false, as the quasi-static solver without friction.skew) psi = 0
   is a constraint: the pocket supplies the couple lambda v' that keeps H.v' = I_y phi' v'_z
   (lambda from the derivative of that identity), and the cage takes its reaction;
-- inner ring: m_ring delta'' = F_ext + sum of the contact forces of the rollers.
+- inner ring: m_ring delta'' = F_ext + sum of the contact forces of the rollers (normal loads
+  and the reaction of the tractions of its raceway and rib contacts).
 
 Loads (every formula is a physics kernel; this module only assembles them):
 - normal contact: :func:`sim.physics.roller_contact.roller_contact` at the roller's pose
@@ -54,9 +55,9 @@ Loads (every formula is a physics kernel; this module only assembles them):
   of the skew on the TRB's rib, whose restoring stiffness with I_y would otherwise ring undamped
   at ~2.4 kHz, TRB 31313, 35 kN; damping ratio ~30 with it), the tilt rate Omega.w'' and the
   centre's velocity (r', z') in the meridian plane, their in-plane parts in the lateral slip of
-  every slice and the rib (the normal parts, squeeze, are the contact damping's). The inner
-  ring's translation velocity and the tractions' reaction on it are left out (:func:`rhs`: the
-  quasi-static ring balance omits that reaction too);
+  every slice and the rib (the normal parts, squeeze, are the contact damping's), and the inner
+  ring's translation velocity in the slip of its raceway and rib contacts, whose tractions react
+  on the ring's translation (as the quasi-static ring balance takes that reaction);
 - cage pocket: circumferential penalty at the pitch radius, force -k (|g| - c/2) sign(g) beyond
   the half play c/2 plus a damper while in contact (never pulling), both set in smoothly over a
   transition depth (a roller resting on its pocket with a few hundredths of a newton sits there:
@@ -75,8 +76,8 @@ from scipy.integrate import solve_ivp
 from threadpoolctl import threadpool_limits
 
 from sim._math.jit import kernel
-from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_TOUT, EV_TZ, NC,
-                                  NEV, RollerRates, pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
+from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_RING_R, EV_RING_T,
+                                  EV_RING_Z, EV_TOUT, EV_TZ, NC, NEV, RollerRates, pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
@@ -330,14 +331,11 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             case.bearing.nrib[j, 0] = work.ribc[2]
             case.bearing.nrib[j, 1] = work.ribc[3]
             # the roller's rates relative to its meridian frame (orbiting at phi'): skew rate psi' = Omega.v',
-            # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z') [rad/s, mm/s]. The inner
-            # ring's translation velocity is left out of the slip, and with it the reaction of the
-            # inner-ring tractions on the ring's translation (both or neither, for the power
-            # balance): the quasi-static solver's ring balance does not take that reaction either
-            # (its friction loads act on the rollers only); with it here alone the TRB 32208's
-            # skewed steady state (4.5 kN) left the quasi-static loads by 1.5 %, the pinion torques
-            # by 2.4 % (the lateral tractions' axial components on the inner ring; README)
-            rates = RollerRates(psi_dot, Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2], rdot, zdot)
+            # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z') [rad/s, mm/s]; the inner
+            # ring's translation velocity along e_r, e_t, e_z at the roller's azimuth [mm/s], in the
+            # slip of its raceway and rib contacts, whose tractions react on the ring (below)
+            rates = RollerRates(psi_dot, Om0 * A[2, 0] + Om1 * A[2, 1] + Om2 * A[2, 2], rdot, zdot,
+                                vx * cph + vy * sph, -vx * sph + vy * cph, va)
             roller_traction(j, wR, psi, rates, wphi, body.wi, case, ev)
             FD = roller_drag(wphi, r, par, ev)
             Fpf = pocket_friction(Fp, wR, par, case.bearing.rho_m, ev)
@@ -384,9 +382,18 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
         # the pocket couple's reaction on the cage (its z-component) and its work
         Tcage -= Cs * A[1, 2]
         P_pocket -= Cs * (psi_dot + (wphi - wc) * A[1, 2])
-        rows[3] = (f[3] + fd[3]) / body.m_ring
-        rows[4] = (f[4] + fd[4]) * cph / body.m_ring
-        rows[5] = (f[4] + fd[4]) * sph / body.m_ring
+        # inner ring: the roller's normal contact forces (f[3] axial, f[4] radial in its meridian
+        # plane) and the reaction of its inner-raceway and rib tractions (e_r, e_t, e_z)
+        F_ring_r = f[4] + fd[4]
+        F_ring_t = 0.0
+        F_ring_z = f[3] + fd[3]
+        if body.friction:
+            F_ring_r += ev[EV_RING_R]
+            F_ring_t += ev[EV_RING_T]
+            F_ring_z += ev[EV_RING_Z]
+        rows[3] = F_ring_z / body.m_ring
+        rows[4] = (F_ring_r * cph - F_ring_t * sph) / body.m_ring
+        rows[5] = (F_ring_r * sph + F_ring_t * cph) / body.m_ring
         rows[NRING + 1] = Tcage / body.I_cage
         rows[NRING + NCAGE + E_DAMP] = P_damp
         rows[NRING + NCAGE + E_ELASTIC] = P_el

@@ -16,7 +16,7 @@ import numpy as np
 from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import copy_vector
 from sim._math.roots import root_search, root_search_step
-from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, cage_pocket_loads, friction_loads, lubrication_state,
+from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, cage_pocket_loads, friction_loads, lubrication_state,
                                   pocket_skew_couple, roller_friction)
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
@@ -50,7 +50,7 @@ KinematicResiduals = namedtuple("KinematicResiduals", [
     "M",            # (Z,) spin moments about the roller axes [N mm]
     "S",            # (Z,) friction moments about the skew axes, without the pocket couple [N mm] (0 without skew)
     "T",            # (Z,) weighted cage z-moments per roller [N mm]
-    "loads",        # (Z, 3) friction loads on the rollers (sim.physics.friction.friction_loads) [N, N, N mm]
+    "loads",        # (Z, NFL) friction loads of the rollers' contacts (sim.physics.friction.friction_loads) [N, N mm]
 ])
 
 
@@ -277,7 +277,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     step is kept if it cuts the squared norm to CHORD_CONTRACTION times its value, else the
     Jacobian is rebuilt at the current point. Same arguments and return value as
     :func:`solve_kinematics`, and ``jac`` (:data:`KinematicJacobian`, read and written) and
-    ``loads`` (Z, 3): the friction loads on the rollers at the returned speeds (written, what
+    ``loads`` (Z, NFL): the friction loads of the rollers' contacts at the returned speeds (written, what
     :func:`sim.physics.friction.cage_pocket_loads` gives there); wR, psi and wc are start values
     (rolling kinematics and no skew, or a previous solution).
     ``presolve``: for a start far away, such as rolling kinematics of a crowned roller, first
@@ -287,6 +287,8 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     crowned TSRBs; one bracketed solve instead of one per roller, the Newton iteration does the
     rest); with skew, that roller's skew at its speed (bracketed), the start of every roller's.
     """
+    if loads.shape[1] != NFL:
+        raise ValueError("loads must have NFL columns (sim.physics.friction.FRICTION_LOADS)")
     active, weight, tol_M = settings.active, settings.weight, settings.tol_M
     dMdw, dTdw, dMdc, dTdc, dMdp, dSdw, dSdp, dSdc, dTdp, known = jac
     par = case.par
@@ -509,8 +511,8 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     settings : KinematicsSettings
     totals : ndarray (NEV,)
         Bearing sums of the roller evaluation vectors at the solution (written).
-    roller_loads : ndarray (Z, 3)
-        Friction loads on the rollers (:func:`sim.physics.friction.cage_pocket_loads`, written; by
+    roller_loads : ndarray (Z, NFL)
+        Friction loads of the rollers' contacts, on the rollers and the inner ring (:func:`sim.physics.friction.cage_pocket_loads`, written; by
         the Newton solve of the last pass when it converged, which evaluated them there).
     jac : KinematicJacobian
         The Newton solves' Jacobian, read and written: :func:`empty_jacobian`, or the one a
@@ -520,6 +522,8 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     -------
     (omega_c [rad/s], converged)
     """
+    if roller_loads.shape[1] != NFL:
+        raise ValueError("roller_loads must have NFL columns (sim.physics.friction.FRICTION_LOADS)")
     active, weight = settings.active, settings.weight
     passes = 2 if settings.traction and fresh else 1
     converged = True

@@ -1,6 +1,6 @@
 """The rates of the roller in the slip of every slice (issue 18, "full 2-D slip vector in each slice";
 sim.physics.friction, module docstring "Rates"): rigid-body kinematics v = v_c + Omega x (X - c)
-of the roller's skew rate, tilt rate and centre velocity, against
+of the roller's skew rate, tilt rate and centre velocity, and the inner ring's translation, against
 closed forms and finite rigid rotations, and the virtual-power identity of the tractions' forces
 and moments with the loss powers. Units: N, mm, s, rad.
 """
@@ -58,11 +58,11 @@ def test_an_axially_translating_roller_without_spin_slips_laterally_by_its_speed
     v = 7.5                                                            # mm/s
     rates = F.NO_RATES._replace(vc_r=v * ur, vc_z=v * uz)
     for s, k, dr, dz, ar, az in loaded_slices(case):
-        s_t, s_a = F.rate_slip(rates, dr, dz, ar, az, ur, uz)
+        s_t, s_a = F.rate_slip(rates, s == 1, dr, dz, ar, az, ur, uz)
         assert s_t == 0.0
         assert s_a == pytest.approx(v * (ur * ar + uz * az), rel=1e-15, abs=1e-15)
         # the same point on a generatrix parallel to the axis (a = u'): exactly v
-        assert F.rate_slip(rates, dr, dz, ur, uz, ur, uz)[1] == pytest.approx(v, rel=1e-15)
+        assert F.rate_slip(rates, s == 1, dr, dz, ur, uz, ur, uz)[1] == pytest.approx(v, rel=1e-15)
 
 
 def test_a_translating_roller_is_resisted_by_lateral_traction_and_dissipates_its_power(case):
@@ -96,7 +96,7 @@ def test_rate_slip_is_the_finite_rigid_rotation(case, which):
     for s, k, dr, dz, ar, az in loaded_slices(case):
         p = np.array([dr, 0.0, dz])
         vel = w * (rotate(p, axis, h) - rotate(p, axis, -h)) / (2.0 * h)
-        s_t, s_a = F.rate_slip(rates, dr, dz, ar, az, ur, uz)
+        s_t, s_a = F.rate_slip(rates, s == 1, dr, dz, ar, az, ur, uz)
         scale = w * np.hypot(dr, dz)
         assert s_t == pytest.approx(vel[1], abs=1e-8 * scale)
         assert s_a == pytest.approx(vel[0] * ar + vel[2] * az, abs=1e-8 * scale)
@@ -108,22 +108,24 @@ def test_rate_slip_is_the_finite_rigid_rotation(case, which):
 
 
 def test_the_tractions_power_on_the_rates_is_the_loss(case):
-    """Virtual power of the kernel: at rest but for arbitrary rates (skew and tilt rate, centre
-    velocity; no spin, rings and orbit still, no skew), the power of the kernel's forces and moments
-    on the roller (F_u, F_v at the centre, moments about v' and w'') on their velocities is minus the
-    sum of the loss powers (sliding, drilling, rolling, hysteresis, rib). 1e-10 relative: round-off of the slice and width sums. The
+    """Virtual power of the kernel: at rest but for arbitrary rates (skew and tilt rate, centre and
+    inner-ring velocity; no spin, rings and orbit still, no skew), the power of the kernel's forces
+    and moments on the roller (F_u, F_v at the centre, moments about v' and w'') and of its reaction
+    on the inner ring (EV_RING_*) on their velocities is minus the sum of the loss powers (sliding,
+    drilling, rolling, hysteresis, rib). 1e-10 relative: round-off of the slice and width sums. The
     TRB 32208's roller 0 bears on its rib (93 N), whose in-plane slip joins the balance."""
     ur, uz, vr, vz = case.frames.Ax[0]
     rng = np.random.default_rng(18)
     ev = np.zeros(F.NEV)
     for _ in range(3):
-        r = F.RollerRates(*(rng.standard_normal(4) * np.array([3.0, 3.0, 20.0, 20.0])))
+        r = F.RollerRates(*(rng.standard_normal(7) * np.array([3.0, 3.0, 20.0, 20.0, 20.0, 20.0, 20.0])))
         F.roller_traction(0, 0.0, 0.0, r, 0.0, 0.0, case, ev)
         P_roller = (ev[F.EV_FU] * (ur * r.vc_r + uz * r.vc_z) + ev[F.EV_FV] * (vr * r.vc_r + vz * r.vc_z)
                     + ev[F.EV_MS] * r.psi_dot + ev[F.EV_MW] * r.omega_w)
+        P_ring = ev[F.EV_RING_R] * r.vi_r + ev[F.EV_RING_T] * r.vi_t + ev[F.EV_RING_Z] * r.vi_z
         loss = sum(ev[F.EV_P0 + i] for i in range(F.NC))
         assert loss > 0.0
         if case.bearing.Qrib[0] > 0.0:          # the TRB: its rib's 2-D slip is in the balance too
             assert ev[F.EV_RIB] > 0.0
-        assert P_roller == pytest.approx(-loss, rel=1e-10)
+        assert P_roller + P_ring == pytest.approx(-loss, rel=1e-10)
 

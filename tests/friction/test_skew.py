@@ -46,7 +46,7 @@ def solved(name):
     pb = friction.problem(op, model.solve(op))
     totals = np.zeros(F.NEV)
     wc, ok = solve_friction(pb.wc, pb.wR, pb.psi, pb.wi, pb.fresh, pb.case, pb.settings, totals,
-                            np.zeros((model.geometry.Z, 3)), pb.jac)
+                            np.zeros((model.geometry.Z, F.NFL)), pb.jac)
     return pb, wc, ok
 
 
@@ -235,7 +235,7 @@ def test_no_skew_moment_without_asymmetry_and_opposite_skew_for_the_mirror_image
         psi = np.zeros(1)
         totals = np.zeros(F.NEV)
         settings = _settings(case)
-        wc_s, ok = solve_friction(wc, wR, psi, wi, True, case, settings, totals, np.zeros((1, 3)), empty_jacobian(1))
+        wc_s, ok = solve_friction(wc, wR, psi, wi, True, case, settings, totals, np.zeros((1, F.NFL)), empty_jacobian(1))
         assert ok
         results[tilt_load] = (S0, psi[0], settings.tol_M)
     S0, psi0, tol = results[0.0]
@@ -308,7 +308,7 @@ def test_skew_changes_sign_with_the_inner_outer_friction_balance():
         case.film.Eta[:, s] *= 5.0
         wR, psi, totals = pb.wR.copy(), pb.psi.copy(), np.zeros(F.NEV)
         wc_s, ok = solve_kinematics_newton(wc, False, pb.wi, wR, psi, case, pb.settings, totals, empty_jacobian(len(wR)),
-                                           np.zeros((len(wR), 3)))
+                                           np.zeros((len(wR), F.NFL)))
         if not ok:
             wR, psi = pb.wR.copy(), pb.psi.copy()
             wc_s, ok = solve_kinematics(wc, pb.wi, wR, psi, case, pb.settings, totals)
