@@ -371,7 +371,7 @@ def test_the_torus_rib_holds_the_trb_31313_less_than_the_sphere_and_less_the_wid
         model, friction, op = models(["bearing=trb_31313", *PINION, *extra])
         pb = friction.problem(op, model.solve(op))
         wc, ok = solve_friction(pb.wc, pb.wR, pb.psi, pb.wi, pb.fresh, pb.case, pb.settings, np.zeros(F.NEV),
-                                np.zeros((model.geometry.Z, 3)), pb.jac)
+                                np.zeros((model.geometry.Z, F.NFL)), pb.jac)
         assert ok
         skews[name] = abs(pb.psi[0])
         assert 0.0 < skews[name] < pb.case.par.skew_clearance, name
