@@ -154,6 +154,20 @@ ROUGHNESS_NOTE = ("below 1 nm a surface is atomically smooth: finished raceways 
                   "more")
 
 
+#: the TRB roller end / rib contact models (sim.geometry.Geometry._rib_arrays, docs/roller_end_torus.md)
+ROLLER_END_NOTE = ("sphere: a roller-end sphere (roller_end_radius_ratio) on a locally flat rib at "
+                   "rib_contact_height_ratio; torus: the thesis's flat end face with edge radius "
+                   "roller_end_edge_radius on a cone rib opened by rib_opening_angle (thesis 5.5.1)")
+EDGE_RADIUS_NOTE = ("edge radius r_k of the flat roller end face, the torus's tube radius (thesis Table A.2: 0.8 mm for "
+                    "the TRB 32208); above 5 mm it would be no edge of a bearing roller; sim.geometry refuses an "
+                    "r_k that leaves no flat face")
+OPENING_ANGLE_NOTE = ("angle between the rib's generatrix and the roller's end face in the meridian plane, opening "
+                      "away from the roller with height, so that the roller touches with its edge next to the "
+                      "raceway (thesis 5.5.1); 0 would be face-to-face contact, not a torus contact, and above "
+                      "30 deg the rib would no longer guide the roller; sim.geometry refuses an angle at which the "
+                      "roller end conforms to the cone around the circumference")
+
+
 @dataclass
 class SurfaceConfig:
     """Roughness and Zhou-Hoeprich mixed friction (thesis (5.16))."""
@@ -206,6 +220,10 @@ class BearingConfig:
     crown_coefficient: Any = key(Number(0.0, 0.01, True, True), only="TRB")
     roller_end_radius_ratio: Any = key(Number(0.3, 1.0, low_open=True), only="TRB")
     rib_contact_height_ratio: Any = key(Number(0.0, 0.5, True, True), only="TRB")
+    roller_end: Any = key(Choice(("sphere", "torus")), only="TRB", note=ROLLER_END_NOTE)
+    roller_end_edge_radius: Any = key(Number(0.0, 5.0, low_open=True, units="mm"), only="TRB",
+                                      note=EDGE_RADIUS_NOTE)
+    rib_opening_angle: Any = key(Number(0.0, 30.0, True, True, units="deg"), only="TRB", note=OPENING_ANGLE_NOTE)
     surface: SurfaceConfig = field(default_factory=SurfaceConfig)
 
 

@@ -199,6 +199,10 @@ class Geometry:
     crown_coefficient: float = np.nan
     roller_end_radius_ratio: float = np.nan
     rib_contact_height_ratio: float = np.nan
+    #: roller end / rib contact model, "sphere" or "torus" (config bearing.roller_end; "" for a TSRB)
+    roller_end: str = ""
+    roller_end_edge_radius: float = np.nan   # mm, r_k of the torus
+    rib_opening_angle: float = np.nan        # deg, as configured
     arrays: dict = field(default_factory=dict, compare=False, repr=False)
 
     # ------------------------------------------------------------------ construction
@@ -229,7 +233,7 @@ class Geometry:
                                 "raceway cones' apex, Dpw / (2 sin(alpha)) from the roller, lies infinitely far")
             err.key, err.rule, err.limit = "bearing.alpha", None, None
             raise err
-        extra = {k: float(b[k]) for k in own if b.get(k) is not None}
+        extra = {k: (str(b[k]) if k == "roller_end" else float(b[k])) for k in own if b.get(k) is not None}
         if kind == "TSRB":  # per-point osculations default to kappa (thesis 8.2; sim.config_schema)
             extra.update({k: extra["kappa"] for pair in OSCULATION_KEYS for k in pair if k not in extra})
         gamma = taper_angle(alpha, Dwe, Dpw)
@@ -256,6 +260,9 @@ class Geometry:
         "end_sphere_reaches_rib": ("roller_end_radius_ratio",
                                    ("roller_end_radius_ratio", "rib_contact_height_ratio", "Dwe", "Lwe", "alpha",
                                     "Dpw", "crown_coefficient")),
+        "torus_face": ("roller_end_edge_radius", ("roller_end_edge_radius", "Dwe", "Lwe", "alpha", "Dpw")),
+        "torus_rib_convex": ("rib_opening_angle",
+                             ("rib_opening_angle", "roller_end_edge_radius", "Dwe", "Lwe", "alpha", "Dpw")),
         "outer_ring_section": ("R", ("R", "Dpw", "Dwe", "Lwe", "alpha", "PCR")),
         "inner_ring_section": ("r", ("r", "Dpw", "Dwe", "Lwe", "alpha", "PCR")),
         "ring_width": ("B", ("B", "Lwe", "Dwe", "alpha")),
@@ -305,6 +312,17 @@ class Geometry:
             _require(rho_ends.min() > 0.1 * self.Dwe, "PCR", self.PCR,
                      f"large enough that both roller end radii exceed 0.1 Dwe = {0.1 * self.Dwe:.3f} mm "
                      f"(now {rho_ends.min():.3f} mm)", "end_radii", self._with("Lwe", "Dwe", "alpha", "Dpw"))
+        elif self.roller_end == "torus":
+            _require(self.roller_end_edge_radius < self._torus_edge_limit(), "roller_end_edge_radius",
+                     self.roller_end_edge_radius,
+                     f"< {self._torus_edge_limit():.4f} mm, where the edge radius would leave no flat end face",
+                     "torus_face", self._with("Dwe", "Lwe", "alpha", "Dpw"), self._torus_edge_limit())
+            limit = self._torus_opening_limit()
+            _require(self.rib_opening_angle > np.degrees(limit), "rib_opening_angle", self.rib_opening_angle,
+                     f"> {np.degrees(limit):.4f} deg: at smaller angles the roller end's circumference is flatter "
+                     "than the cone rib's, so it would touch the rib at two points off the meridian plane, not at "
+                     "one point of its edge", "torus_rib_convex",
+                     self._with("roller_end_edge_radius", "Dwe", "Lwe", "alpha", "Dpw"), float(np.degrees(limit)))
         else:
             rho_large = float(self.roller_radius(half * (1 - 1e-9)))
             _require(self.rib_contact_height_ratio * self.Dwe < rho_large, "rib_contact_height_ratio",
@@ -522,30 +540,106 @@ class Geometry:
         # discs of radius r at x, (r^2 / 4 + x^2) pi r^2 dx each [t mm^2]
         out["inertia_transverse"] = self.density * np.trapezoid(np.pi * rs**2 * (0.25 * rs**2 + xs**2), xs)
         if self.type == "TRB":
-            out["rib"] = self._rib_arrays()
+            out["rib"], out["rib_end"] = self._rib_arrays()
         else:
-            out["rib"] = np.zeros(6)
+            out["rib"], out["rib_end"] = np.zeros(6), np.zeros(4)
         assert out["R_eq"].shape == (2, n)
         return out
 
     def _rib_arrays(self):
-        """Roller-end / rib contact of the TRB (thesis 5.5.1; values ASSUMED, see conf/bearing).
+        """Roller-end / rib contact of the TRB (thesis 5.5.1; docs/roller_end_torus.md).
 
-        Roller end: sphere of radius R_end = ratio * (apex distance to the large end face),
-        centred on the roller axis. Rib: inner-ring face touching that sphere at the nominal
-        pose at a height e = rib_contact_height_ratio * Dwe above the inner raceway; locally a
-        plane (its curvature is neglected in the Hertz stiffness).
-        Returns (c_x, c_y, R_end, n_x, n_y, 0): sphere centre and unit rib normal (into the rib)
-        in the roller frame.
+        ``roller_end = "sphere"`` (dimensions ASSUMED, see conf/bearing): roller end a sphere of
+        radius R_end = roller_end_radius_ratio * (apex distance to the large end face), centred on
+        the roller axis; the rib an inner-ring face touching it at the nominal pose at a height
+        e = rib_contact_height_ratio * Dwe above the inner raceway, locally a plane (its curvature
+        is neglected in the Hertz contact).
+
+        ``roller_end = "torus"`` (the thesis's TRB model, 5.5.1): a flat end face whose edge is
+        rounded with r_k (a torus: tube radius r_k, tube centre circle of radius a, the rim, at
+        x = Lwe/2 - r_k, :meth:`_torus_rib`) against a cone rib whose generatrix opens by
+        rib_opening_angle from the end face, so that the edge touches next to the raceway. In the
+        meridian plane the touching tube section is a circle of radius r_k centred off the axis at
+        (Lwe/2 - r_k, -a); the rib normal is (cos, -sin)(opening angle). Hertz: elliptical, r_k
+        across the rolling direction, along it the end's circumferential radius against the cone
+        rib's concave one.
+
+        Returns
+        -------
+        rib : ndarray (6,)
+            (c_x, c_y, r, n_x, n_y, R_t) [mm, 1] in the roller frame: centre of the touching circle
+            (sphere centre, or tube section centre), its radius, unit rib normal into the rib,
+            and the relative radius of curvature along e_t (R_t = r: circular contact).
+        rib_end : ndarray (4,)
+            (R_n, x_n, R_t, R_m) [mm]: distance from the contact point along the normal to the
+            roller axis (the end's principal radius about that axis), where the normal meets
+            the axis (x from the roller centre), and the relative radii of curvature along e_t
+            and across it, in the meridian plane.
         """
         half = 0.5 * self.Lwe
+        if self.roller_end == "torus":
+            t = self._torus_rib(np.radians(self.rib_opening_angle))
+            rib = np.array([t["c_x"], -t["a"], self.roller_end_edge_radius, t["n_x"], t["n_y"], t["Rx"]])
+            return rib, np.array([t["R_n"], t["x_n"], t["Rx"], self.roller_end_edge_radius])
         R_end = self.roller_end_radius_ratio * (self.apex_distance + half)
         rho_large = float(self.roller_radius(half * (1 - 1e-9)))
         y_c = -(rho_large - self.rib_contact_height_ratio * self.Dwe)
         cx = half - R_end
         x_c = cx + np.sqrt(R_end**2 - y_c**2)
         n = np.array([x_c - cx, y_c]) / R_end
-        return np.array([cx, 0.0, R_end, n[0], n[1], 0.0])
+        return np.array([cx, 0.0, R_end, n[0], n[1], R_end]), np.array([R_end, cx, R_end, R_end])
+
+    def _torus_rim(self, r_k):
+        """Rim radius a [mm] of a flat end face with edge radius r_k [mm]: the distance from the
+        roller axis of the centre of the edge's tube section, tangent to the end face x = Lwe/2
+        and to the roller's uncrowned cone Dwe/2 + x tan(gamma) (the crown drop there is
+        below 0.02 mm in the shipped TRBs): a = Dwe/2 + (Lwe/2 - r_k) tan(gamma) - r_k / cos(gamma)."""
+        return 0.5 * self.Dwe + (0.5 * self.Lwe - r_k) * np.tan(self.gamma) - r_k / np.cos(self.gamma)
+
+    def _torus_edge_limit(self):
+        """Largest edge radius [mm]: the one whose rim radius is zero (:meth:`_torus_rim`)."""
+        return (0.5 * self.Dwe + 0.5 * self.Lwe * np.tan(self.gamma)) / (np.tan(self.gamma) + 1.0 / np.cos(self.gamma))
+
+    def _torus_rib(self, opening):
+        """Torus / cone-rib contact at the nominal pose for a rib opening angle [rad] (docs/roller_end_torus.md).
+
+        The rib normal into the rib in the roller frame is n = (cos b, -sin b), b the opening
+        angle; the torus point with that outward normal is the edge point P = (c_x, -a) + r_k n,
+        c_x = Lwe/2 - r_k. The torus is a surface of revolution about the roller axis, so its
+        normal at P meets that axis, at R_n = r_k + a / sin(b) from P (Meusnier: the principal
+        radius along the parallel circle), x_n = c_x - a cot(b). The cone rib is a surface of
+        revolution about the bearing axis, concave seen from the roller along e_t with radius
+        X_r / n_r (X_r the radius of P, n_r = sin(alpha - b) the radial component of n). Relative
+        curvature along e_t: 1/R_n - n_r / X_r (Rx its inverse; -inf where it is not positive:
+        the end would conform to the rib or touch it at two points); across: 1/r_k (the rib's
+        generatrix is straight).
+        """
+        r_k = self.roller_end_edge_radius
+        a = self._torus_rim(r_k)
+        c_x = 0.5 * self.Lwe - r_k
+        n_x, n_y = np.cos(opening), -np.sin(opening)
+        x_p, y_p = c_x + r_k * n_x, -a + r_k * n_y
+        R_n = r_k + a / np.sin(opening)
+        X_r = 0.5 * self.Dpw + x_p * np.sin(self.alpha) + y_p * np.cos(self.alpha)
+        n_r = np.sin(self.alpha - opening)
+        k_t = 1.0 / R_n - n_r / X_r
+        return {"c_x": c_x, "a": a, "n_x": n_x, "n_y": n_y, "R_n": R_n, "x_n": c_x - a * n_x / np.sin(opening),
+                "X_r": X_r, "n_r": n_r, "Rx": 1.0 / k_t if k_t > 0.0 else -np.inf}
+
+    def _torus_opening_limit(self):
+        """Smallest rib opening angle [rad] at which the torus touches the cone rib at one edge
+        point (relative curvature along e_t positive, :meth:`_torus_rib`), by bisection in
+        (0, 30 deg] (the schema's range); 30 deg if none there."""
+        lo, hi = 0.0, np.radians(30.0)
+        if not self._torus_rib(hi)["Rx"] > 0.0:
+            return hi
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            if self._torus_rib(mid)["Rx"] > 0.0:
+                hi = mid
+            else:
+                lo = mid
+        return hi
 
     def summary(self):
         """Derived values for reports and Dataset attributes."""

@@ -8,6 +8,7 @@ from collections import namedtuple
 import numpy as np
 
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
+from sim.physics.contact import hertz_point_radii
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
 from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z, FL_U, FL_W, NC, NEV,
                                   NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, width_quadrature)
@@ -48,6 +49,16 @@ BREAKAWAY_SLIP_RESOLUTION = 1e-10   # 1, v_s of the breakaway case over the pitc
 # (speed 0), the symmetry classes (weight, source: sim.solvers.symmetry) and the roller loads (Z,) [N].
 FrictionProblem = namedtuple("FrictionProblem", ["case", "settings", "wc", "wR", "psi", "wi", "jac", "fresh", "static",
                                                  "weight", "source", "load"])
+
+
+def rib_end_hertz(rib_end):
+    """The friction kernels' roller-end array (:data:`sim.physics.friction.ContactLoads` ``rib_end``,
+    (6,)): the geometry's (R_n, x_n, R_t, R_m) [mm] followed by the equivalent-circle radius of the
+    Hertz contact area [mm] and its ellipticity along e_t [1]
+    (:func:`sim.physics.contact.hertz_point_radii`; R_t, 1 for the sphere's circular contact)."""
+    R_t, R_m = float(rib_end[2]), float(rib_end[3])
+    _, R_area, kappa = hertz_point_radii(R_t, R_m) if R_t > 0.0 else (0.0, 0.0, 0.0)   # 0: no rib (TSRB)
+    return np.array([*(float(v) for v in rib_end), R_area, kappa])
 
 
 class FrictionModel:
@@ -155,7 +166,8 @@ class FrictionModel:
                                boundary_only=True)
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
-                                E_star=float(self.E_star), R_end=float(a["rib"][2]), x_end=float(a["rib"][0]),
+                                E_star=float(self.E_star), rib_end=rib_end_hertz(a["rib_end"]),
+                                rib_skew_slip=g.roller_end == "torus",
                                 nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe,
                                 free=raw["free"])
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))

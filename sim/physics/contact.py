@@ -392,3 +392,77 @@ def hertz_point_load(delta, R, E_star):
 def contact_modulus(E, nu):
     """Contact modulus E* of two equal steel bodies [N/mm^2]: 1/E* = 2 (1 - nu^2)/E (Johnson eq. 4.22)."""
     return E / (2.0 * (1.0 - nu**2))
+
+
+#: bisection steps on ln(k) of :func:`hertz_point_radii`: 2^-60 of ln(R_long / R_short), below round-off
+ELLIPSE_BISECTION_STEPS = 60
+
+
+@internal_kernel
+def elliptic_integral_sums(k):
+    """Complete elliptic integral K(m) of the first kind and S = (K - E) / K, E of the second kind,
+    for the parameter m = 1 - 1/k^2, k >= 1, by the arithmetic-geometric mean (Abramowitz & Stegun
+    17.6.3-17.6.4: a_0 = 1, b_0 = 1/k, c_0^2 = m; K = pi / (2 a_N), E / K = 1 - sum 2^(n-1) c_n^2,
+    c_(n+1) = c_n^2 / (4 a_(n+1)) without cancellation). Quadratic convergence: stops at round-off."""
+    a = 1.0
+    b = 1.0 / k
+    c2 = (1.0 - b) * (1.0 + b)      # c_0^2 = m
+    S = 0.5 * c2
+    w = 0.5
+    for _ in range(64):
+        a_next = 0.5 * (a + b)
+        b = np.sqrt(a * b)
+        c2 = c2 * c2 / (16.0 * a_next * a_next)
+        a = a_next
+        w *= 2.0
+        S += w * c2
+        if w * c2 <= 1e-17 * S:
+            break
+    return 0.5 * np.pi / a, S
+
+
+@kernel
+def hertz_point_radii(Rx, Ry):
+    """Radii of the circular Hertz contact equivalent to an elliptical one (same load-approach
+    law, same contact area), for relative radii of curvature Rx, Ry [mm] along the two principal
+    directions, and the ellipticity along x.
+
+    Exact Hertz theory (Johnson 1985, eqs. 3.70-3.72; gap A x^2 + B y^2, A = 1/(2 R_a) <= B =
+    1/(2 R_b)): the semi-axis ratio k = a/b >= 1 solves B/A = (k^2 E - K) / (K - E), with the
+    complete elliptic integrals K, E of m = 1 - 1/k^2 (:func:`elliptic_integral_sums`; bisection
+    on ln k in [0, ln(R_a / R_b)], where k < R_a / R_b); then a^3 = 3 Q (K - E) / (2 pi E* m A),
+    delta = 3 Q K / (2 pi a E*). A sphere of radius R_load on a plane, Q = 4/3 E* sqrt(R_load)
+    delta^(3/2) (Johnson 4.23), has the same Q(delta) for R_load = pi^2 (K - E) R_a / (2 m K^3);
+    a circle of radius (3 Q R_area / (4 E*))^(1/3) has the ellipse's area pi a b for
+    R_area = 4 (K - E) R_a / (pi m k^(3/2)). Both tend to R as R_a, R_b -> R; the circle
+    (Rx == Ry) returns (Rx, Rx, 1) exactly. tests/closed_form/test_roller_end_torus.py checks
+    them against Johnson's circular limit and Hamrock & Brewe 1983 near it.
+
+    Returns
+    -------
+    R_load, R_area : float
+        [mm], as above.
+    kappa : float
+        Semi-axis along x over the one along y [1] (k or 1/k).
+    """
+    if Rx == Ry:
+        return Rx, Rx, 1.0
+    R_a = max(Rx, Ry)
+    ratio = R_a / min(Rx, Ry)
+    lo = 0.0
+    hi = np.log(ratio)
+    for _ in range(ELLIPSE_BISECTION_STEPS):
+        t = 0.5 * (lo + hi)
+        k = np.exp(t)
+        S = elliptic_integral_sums(k)[1]
+        # B/A = (k^2 E - K) / (K - E) = (k^2 - 1) / S - k^2 with S = (K - E) / K
+        if (k * k - 1.0) / S - k * k < ratio:
+            lo = t
+        else:
+            hi = t
+    k = np.exp(0.5 * (lo + hi))
+    K, S = elliptic_integral_sums(k)
+    m = (1.0 - 1.0 / k) * (1.0 + 1.0 / k)
+    KmE = K * S                                             # K - E
+    kappa = k if Rx > Ry else 1.0 / k
+    return np.pi ** 2 * KmE * R_a / (2.0 * m * K ** 3), 4.0 * KmE * R_a / (np.pi * m * k ** 1.5), kappa

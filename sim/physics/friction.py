@@ -65,8 +65,10 @@ order in psi:
   meridian-plane load on the roller (EV_FU, EV_FV, EV_MW: fed back into the load distribution
   with the cage pocket friction, ``roller_loads``); its power -F_l s_l is ``sliding`` and is
   reported on its own (EV_PSKEW, output ``skew_sliding``); its moment about u'' (first order in
-  psi) enters the roller's spin balance; it has no z-moment. Lateral slip at the rib, and the
-  heating of the lateral slip in the film temperature, are neglected;
+  psi) enters the roller's spin balance; it has no z-moment. Lateral slip at the rib: the same
+  kinematics for the torus roller end (its power is ``rib``), neglected for the sphere (whose
+  contact slides about five times faster along e_t); the heating of the lateral slip in the film
+  temperature is neglected;
 - moment about the skew axis v' (EV_MS): x F_t of every slice (x = (X - c).u'), M_n (v'.n),
   the rolling couple's v' component, the rib traction at x_rib, and the normal loads turned with
   the contact points: -Q psi f (X_r (n_z v_r - n_r v_z) + n_r (d_r v_z - d_z v_r)), each normal
@@ -119,7 +121,7 @@ solver all three on the ring's translation, whose velocity it passes as V.
 The rib takes the same rates on its 2-D slip (s, s_b), s_b along b = n_rib x e_t in the meridian plane.
 The entrainment speed of the transit time 2 b / u is the mean speed of the surfaces relative to the
 contact point (Reynolds' equation in the frame of a moving contact, as for a cam and follower): the
-contact lies at the azimuth f psi (lateral_slip_rate; psi x_end / r_centre at the rib) and moves
+contact lies at the azimuth f psi (lateral_slip_rate; psi x_n / r_centre at the rib) and moves
 along e_t at X_r f psi', so u = 1/2 |v1 + v2 + psi' (x - 2 X_r f)|. The film itself (thickness,
 load share, thermal viscosity, lubrication_state) stays that of the spins, refreshed per window; the
 lateral slip of the rates does not enter the shear heating.
@@ -252,9 +254,16 @@ ContactLoads = namedtuple("ContactLoads", [
     "R_eq",         # (2, N) radii of relative curvature [mm]
     "w",            # slice width [mm]
     "E_star",       # contact modulus [MPa]
-    "R_end",        # roller-end sphere radius [mm] (TRB; geometry arrays ``rib[2]``)
-    "x_end",        # roller-end sphere centre along u' from the roller centre [mm] (TRB; ``rib[0]``)
+    "rib_end",      # (6,) roller end at the rib contact (TRB; zeros for a TSRB): geometry arrays ``rib_end``
+                    # [mm]: R_n, distance from the contact point along the rib normal to the roller axis (the
+                    # end sphere's radius; the torus's r_k + rim / sin(opening)); x_n, where that normal meets
+                    # the roller axis, along u' from the roller centre (the sphere's centre); R_t, R_m, relative
+                    # radii of curvature along e_t and across it (equal for the sphere: circular contact); then
+                    # sim.physics.contact.hertz_point_radii(R_t, R_m)[1:]: R_area [mm], the radius of the
+                    # circle of the Hertz contact's area, and kappa [1], its semi-axis along e_t over the other
     "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
+    "rib_skew_slip",  # bool: the rib contact slips laterally with the skew (the torus; the sphere model
+                      # leaves it out, docs/roller_end_torus.md)
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
     "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.coupled_slice_loads)
 ])
@@ -545,15 +554,18 @@ def lubrication_state(wR, wc, wi, active, case):
         if Qrib[j] > 0.0:
             v1, v2 = _surface_speeds(wR[j], wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
             u = 0.5 * abs(v1 + v2)
-            R_end = brg.R_end
-            # sphere on a locally flat rib: circular Hertz contact, a = (3 Q R / (4 E*))^(1/3) (Johnson 4.22)
-            a = (3.0 * Qrib[j] * R_end / (4.0 * E_star)) ** (1.0 / 3.0)
+            R_t = brg.rib_end[2]
+            R_m = brg.rib_end[3]
+            # Hertz point contact: circular for the sphere on a locally flat rib, a = (3 Q R / (4 E*))^(1/3)
+            # (Johnson 4.22); elliptical for the torus on the cone rib, a the radius of the circle of the
+            # same area (R = R_area, sim.physics.contact.hertz_point_radii)
+            a = (3.0 * Qrib[j] * brg.rib_end[4] / (4.0 * E_star)) ** (1.0 / 3.0)
             prib = Qrib[j] / (np.pi * a * a)
             if par.boundary_only:       # no film at the rib either (above)
                 film.prib[j] = prib
                 film.Phirib[j] = 1.0
                 continue
-            hrib = film_point(u, Qrib[j], R_end, R_end, par.eta0, par.alpha, Ep)
+            hrib = film_point(u, Qrib[j], R_t, R_m, par.eta0, par.alpha, Ep)   # entrainment along e_t
             Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
             npts = _width_points(prib, 0.0, par, quad, pts)
             theta = _viscosity_factor_at(HeatedContact(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2), par, quad, npts, pts)
@@ -853,7 +865,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         prib = film.prib[j]
         nr = case.bearing.nrib[j, 0]
         nz = case.bearing.nrib[j, 1]
-        r_centre = Xrib[j, 0] - case.bearing.R_end * nr               # radius of the end-sphere centre [mm]
+        R_n, x_n = case.bearing.rib_end[0], case.bearing.rib_end[1]
+        r_centre = Xrib[j, 0] - R_n * nr    # radius of the point where the normal meets the roller axis [mm]
         v1, v2 = _surface_speeds(wR, wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
         dr = Xrib[j, 0] - cr
         dz = Xrib[j, 1] - cz
@@ -864,12 +877,19 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         bz = nr
         st_rate, sb = rate_slip(rates, True, dr, dz, br, bz, ur, uz)
         st = v1 - v2 + st_rate
-        a_rib = np.sqrt(Qrib[j] / (np.pi * prib))                  # Hertz radius [mm]
-        # entrainment relative to the contact point, whose azimuth psi x_end / r_centre (below)
-        # moves it along e_t at X_r x_end psi' / r_centre (as the slices)
+        skew_slip = psi != 0.0 and case.bearing.rib_skew_slip
+        if skew_slip:
+            # the torus's lateral slip of the skew along b (docs/roller_end_torus.md): the slices'
+            # lateral_slip_rate, a surface of revolution about the roller axis touching one about the
+            # bearing axis (its azimuth factor is x_n / r_centre)
+            sb += psi * lateral_slip_rate(v1, Xrib[j, 0], dr, dz, nr, nz, ur, uz, vr, vz)[0]
+        # Hertz semi-axis along e_t [mm]: area Q / p = pi a_t a_m, a_t / a_m = kappa (1 for a circle)
+        a_rib = np.sqrt(Qrib[j] * case.bearing.rib_end[5] / (np.pi * prib))
+        # entrainment relative to the contact point, whose azimuth psi x_n / r_centre (below)
+        # moves it along e_t at X_r x_n psi' / r_centre (as the slices)
         ue = v1 + v2
         if psi_dot != 0.0 or rates.vi_t != 0.0:
-            ue += psi_dot * (x - 2.0 * Xrib[j, 0] * case.bearing.x_end / r_centre) + rates.vi_t
+            ue += psi_dot * (x - 2.0 * Xrib[j, 0] * x_n / r_centre) + rates.vi_t
         t_transit = 2.0 * a_rib / max(0.5 * abs(ue), MIN_ENTRAINMENT_SPEED)
         # traction -g(|v|) v on the 2-D slip (st, sb) over the contact area Q / p [mm^2]
         v = abs(st) if sb == 0.0 else np.sqrt(st * st + sb * sb)
@@ -891,10 +911,23 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             ev[EV_RING_R] -= Fb * br
             ev[EV_RING_Z] -= Fb * bz
             ev[EV_RIB] -= Fb * sb
+            if skew_slip:
+                # its moment about the skewed axis u' + psi e_t at the turned contact point (first
+                # order in psi, as the slices' F_l), and the e_t component f psi b_r of b turned to
+                # the contact point's meridian plane (no z-moment: b lies in that plane), which the
+                # roller's orbit takes with the normal load's (the lever f = x_n / r_centre is ~-7 at
+                # the torus rib, ~0.2 at a slice, whose F_l leaves it out)
+                f = x_n / r_centre
+                ev[EV_MU] += Fb * psi * ((dz * br - dr * bz) + f * Xrib[j, 0] * (bz * ur - br * uz)
+                                         + f * br * (dr * uz - dz * ur))
+                ev[EV_FT] += Fb * psi * f * br
+                ev[EV_RING_T] -= Fb * psi * f * br
         if psi != 0.0:
-            # the rib load -Q_rib n along the normal through the end-sphere centre, whose azimuth is
-            # phi = psi x_end / r_centre: its moment about v' (as the slices' normal loads)
-            phi = psi * case.bearing.x_end / r_centre
+            # the rib load -Q_rib n along the normal, which meets the skewed roller axis at x_n (the
+            # end-sphere centre; for the torus docs/roller_end_torus.md): the contact point and that
+            # normal lie in the meridian plane at azimuth phi = psi x_n / r_centre; its moment about v'
+            # (as the slices' normal loads)
+            phi = psi * x_n / r_centre
             ev[EV_MS] -= Qrib[j] * phi * (Xrib[j, 0] * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
             ev[EV_FT] -= Qrib[j] * phi * nr
 

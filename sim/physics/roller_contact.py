@@ -20,7 +20,8 @@ The tangent stiffness is the exact Jacobian K = -df/dy:
 - geometric part: w sum_k q_k H_k with H_k the second derivative of the penetration: the
   raceway curvature (t.dP/dy_a)(t.dP/dy_b)/r_c (t the profile tangent, r_c the radius of the
   TSRB arc that bounds the slice, PCR (2 - kappa_k); zero for a straight TRB cone) plus
-  n . d2P/dtheta2 = -n.(x u' + y v') of the turning slice point P (and -c_x n.u' for the rib sphere centre).
+  n . d2P/dtheta2 = -n.(x u' + y v') of the turning slice point P (and -n.(c_x u' + c_y v') for the centre of
+  the roller end's circle at the rib).
 
 Kernels share state through named tuples of arrays (STYLE.md): :data:`BearingArrays` (the
 bearing), :data:`ContactFrames` (frames of Z rollers, or of one roller), :data:`RollerContact`
@@ -33,8 +34,8 @@ import numpy as np
 from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import solve_dense
 from sim.geometry import RACE_LENS
-from sim.physics.contact import (NO_CONTACT, Raceway, RingMotion, SliceContacts, hertz_point_load, lens_penetration,
-                                 roller_axes, slice_contact_meridian, to_ring)
+from sim.physics.contact import (NO_CONTACT, Raceway, RingMotion, SliceContacts, hertz_point_load, hertz_point_radii,
+                                 lens_penetration, roller_axes, slice_contact_meridian, to_ring)
 from sim.physics.elasticity import INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, independent_slice_loads
 
 NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'), theta, delta_a, delta_r
@@ -43,8 +44,9 @@ NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'),
 # x, rho (N,): slice centres along the roller axis from mid-length and roller radius there [mm];
 # w: slice width [mm]; race_kind (2,) int64, race_par (2, 6): outer and inner raceway profiles in
 # ring coordinates (sim.physics.contact); R_eq (2, N): radii of relative curvature per race and
-# slice [mm]; rib (6,): roller-end sphere centre (c_x, c_y) and radius R_end [mm], unit rib normal
-# (n_x, n_y) into the rib in the roller frame, 0 (zeros for a TSRB); alpha: roller-axis angle
+# slice [mm]; rib (6,): centre (c_x, c_y) and radius of the roller end's circle that touches the rib in
+# the meridian plane (end sphere, or the torus's tube section) [mm], unit rib normal (n_x, n_y) into the
+# rib in the roller frame, relative radius of curvature along e_t [mm] (sim.geometry; zeros for a TSRB); alpha: roller-axis angle
 # [rad]; Dpw: pitch diameter [mm]; Lwe: roller length [mm]; Z: number of rollers; has_rib: the
 # inner ring guides the rollers by a rib (TRB).
 BearingArrays = namedtuple("BearingArrays", ["x", "rho", "w", "race_kind", "race_par", "R_eq", "rib", "alpha",
@@ -149,7 +151,7 @@ def roller_frames(pose, ring, phi, cpsi, bearing, d, frames):
                                    SliceContacts(d[n:2 * n], frames.Nrm[1], frames.X[1]))
     rib = bearing.rib
     ex = rib[0] + rib[2] * rib[3]
-    ey = rib[2] * rib[4]
+    ey = rib[1] + rib[2] * rib[4]
     frames.Xrib[0] = Cen[0] + ex * ur + ey * vr
     frames.Xrib[1] = Cen[1] + ex * uz + ey * vz
 
@@ -301,7 +303,8 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
                     for b in range(a, NY):
                         K[a, b] += kap * T[a] * T[b]
         state.Q[s] = Qs
-    # roller-end / rib contact (TRB): sphere (centre cx on the roller axis, radius R_end) on a plane
+    # roller-end / rib contact (TRB): a circle of radius r centred at (cx, cy) in the roller frame
+    # (the end sphere, cy = 0, or the torus's tube section, cy = -rim radius) on a plane
     state.Q[2] = 0.0
     state.depth[2] = 0.0
     g = Gall[2 * n]
@@ -314,17 +317,18 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
     if bearing.has_rib:
         rib = bearing.rib
         cx = rib[0]
+        cy = rib[1]
         R_end = rib[2]
         sa = np.sin(bearing.alpha)
         ca = np.cos(bearing.alpha)
-        # nominal rib plane (ring coordinates): normal n0 and a point l0
+        # nominal rib plane (ring coordinates): normal n0 and a point l0 (u0 = (sa, -ca), v0 = (ca, sa))
         n0r = rib[3] * sa + rib[4] * ca
         n0z = -rib[3] * ca + rib[4] * sa
-        l0r = 0.5 * bearing.Dpw + cx * sa + R_end * n0r
-        l0z = -cx * ca + R_end * n0z
-        # current sphere centre, world then ring coordinates
-        cr = frames.Cen[0] + cx * ur
-        cz = frames.Cen[1] + cx * uz
+        l0r = 0.5 * bearing.Dpw + cx * sa + cy * ca + R_end * n0r
+        l0z = -cx * ca + cy * sa + R_end * n0z
+        # current circle centre, world then ring coordinates
+        cr = frames.Cen[0] + cx * ur + cy * vr
+        cz = frames.Cen[1] + cx * uz + cy * vz
         tr = cr - ring[1] * cpsi
         tz = cz - ring[0]
         cp = np.cos(phi)
@@ -334,18 +338,21 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
         drib = (lr - l0r) * n0r + (lz - l0z) * n0z + R_end
         nwr = cp * n0r - sp * n0z
         nwz = sp * n0r + cp * n0z
-        Qr, dQ = hertz_point_load(drib, R_end, elasticity.E_star)
+        # circular (sphere) or elliptical (torus) Hertz: the equivalent sphere of the same Q(delta)
+        R_load = hertz_point_radii(rib[5], R_end)[0]
+        Qr, dQ = hertz_point_load(drib, R_load, elasticity.E_star)
         g[0] = nwr * ur + nwz * uz
         g[1] = nwr * vr + nwz * vz
-        g[2] = cx * (nwr * vr + nwz * vz)
+        # d centre / dtheta = cx v' - cy u'
+        g[2] = cx * (nwr * vr + nwz * vz) - cy * (nwr * ur + nwz * uz)
         g[3] = -nwz
         g[4] = -nwr * cpsi
         for a in range(NY):
             f[a] -= Qr * g[a]
             for b in range(a, NY):
                 K[a, b] += dQ * g[a] * g[b]
-        # the sphere centre turns with the roller: n . d2c/dtheta2 = -cx n . u'
-        K[2, 2] -= Qr * cx * (nwr * ur + nwz * uz)
+        # the circle centre turns with the roller: n . d2c/dtheta2 = -n . (cx u' + cy v')
+        K[2, 2] -= Qr * cx * (nwr * ur + nwz * uz) + Qr * cy * (nwr * vr + nwz * vz)
         state.Q[2] = Qr
         dall[2 * n] = drib
         state.depth[2] = drib

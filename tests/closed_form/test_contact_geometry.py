@@ -101,8 +101,9 @@ def _frames_closed_form(g, a, poses, ring, tilt):
     X = c + x u' +- rho v' (+ towards the outer raceway); normal into the ring: the cone's normal
     (RACE_LINE) or the unit vector from the centre of the arc the point penetrates most
     (RACE_LENS), in ring coordinates (the inner ring shifted by (delta_r cos(psi), delta_a) and
-    turned by tilt cos(psi)); roller-end / rib point c + (rib0 + rib2 rib3) u' + rib2 rib4 v' (the
-    end sphere's point along the nominal rib normal, geometry arrays ``rib``; zeros: the centre)."""
+    turned by tilt cos(psi)); roller-end / rib point c + (rib0 + rib2 rib3) u' + (rib1 + rib2 rib4) v'
+    (the point of the end's touching circle along the nominal rib normal, geometry arrays ``rib``;
+    zeros: the centre)."""
     from sim.geometry import RACE_LINE
 
     Z, n = g.Z, g.n_slices
@@ -117,7 +118,7 @@ def _frames_closed_form(g, a, poses, ring, tilt):
         c = np.array([0.5 * g.Dpw + xi * sa + eta * ca, -xi * ca + eta * sa])
         up, vp = u * np.cos(th) + v * np.sin(th), -u * np.sin(th) + v * np.cos(th)
         Cen[j], Ax[j] = c, np.concatenate([up, vp])
-        Xrib[j] = c + (rib[0] + rib[2] * rib[3]) * up + rib[2] * rib[4] * vp
+        Xrib[j] = c + (rib[0] + rib[2] * rib[3]) * up + (rib[1] + rib[2] * rib[4]) * vp
         for s, side in ((0, 1.0), (1, -1.0)):
             pts = c + np.outer(a["x"], up) + side * np.outer(a["rho"], vp)       # (n, 2)
             X[j, s] = pts
@@ -141,6 +142,7 @@ def _frames_closed_form(g, a, poses, ring, tilt):
     (["bearing=tsrb_reference"], 4500.0, 2000.0, 0.0),
     (["bearing=trb_32208"], 4500.0, 2000.0, 0.0),
     (["bearing=trb_32208"], 40000.0, 0.0, 0.0),
+    (["bearing=trb_32208", "bearing.roller_end=torus"], 4500.0, 2000.0, 0.0),
     (["bearing=tsrb_prototype"], 4500.0, 2000.0, 0.25),
     (["bearing=tsrb_reference", "solver.elasticity=independent"], 4500.0, 4000.0, 0.0),
 ])

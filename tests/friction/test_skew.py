@@ -25,6 +25,9 @@ CASES = {
     "trb_32208 combined": ["bearing=trb_32208", "load.Fa=4500", "load.Fr=2000"],
     "tsrb_pinion 35 kN": ["bearing=tsrb_pinion", *PINION],
     "trb_31313 35 kN": ["bearing=trb_31313", *PINION],
+    # the thesis's torus roller end (bearing.roller_end = torus, docs/roller_end_torus.md)
+    "trb_32208 combined torus": ["bearing=trb_32208", "bearing.roller_end=torus", "load.Fa=4500", "load.Fr=2000"],
+    "trb_31313 35 kN torus": ["bearing=trb_31313", "bearing.roller_end=torus", *PINION],
 }
 
 
@@ -164,8 +167,8 @@ def synthetic(crown=0.0, tilt_load=0.0):
     q[0, :] = 400.0 * (1.0 + tilt_load * X_SYN / 6.0)
     R_o, R_i = cr + 5.0, cr - 5.0
     R_eq = np.array([np.full(N_SYN, 5.0 * R_o / (R_o - 5.0)), np.full(N_SYN, 5.0 * R_i / (R_i + 5.0))])
-    bearing = F.ContactLoads(q=q, Qrib=np.zeros(1), R_eq=R_eq, w=X_SYN[1] - X_SYN[0], E_star=2.27e5, R_end=0.0,
-                             x_end=0.0, nrib=np.zeros((1, 2)), rho_m=5.0,
+    bearing = F.ContactLoads(q=q, Qrib=np.zeros(1), R_eq=R_eq, w=X_SYN[1] - X_SYN[0], E_star=2.27e5,
+                             rib_end=np.zeros(6), rib_skew_slip=False, nrib=np.zeros((1, 2)), rho_m=5.0,
                              free=np.full((1, 2, N_SYN), 1e-3))     # every slice loaded: full strips
     shape = (1, 2, N_SYN)
     film = F.FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (quad.wq.shape[0],)),
@@ -351,3 +354,26 @@ def test_bracketing_fallback_finds_the_newton_solution(name):
     assert ok
     np.testing.assert_allclose(psi[active], pb.psi[active], rtol=0.0, atol=1e-6)
     np.testing.assert_allclose(wR[active], pb.wR[active], rtol=1e-6)
+
+
+def test_the_torus_rib_holds_the_trb_31313_less_than_the_sphere_and_less_the_wider_it_opens():
+    """docs/roller_end_torus.md: the rib load's restoring skew stiffness is Q_rib times a lever that
+    grows as the point where the contact normal meets the roller axis (x_n) approaches the bearing
+    axis: 888 N mm/(N rad) for the sphere, 305 / 161 / 80 for the torus (r_k 0.8 mm) at rib
+    opening angles 5 / 6 / 8 deg. So at the pinion case the torus skews more than the sphere, and
+    more the wider the rib opens, each inside the pocket clearance (a free equilibrium). Only the
+    order is asserted (the friction moment changes with the rib too: the torus's contact sits
+    lower on the end face, its sliding speed is smaller)."""
+    skews = {}
+    for name, extra in (("sphere", []), ("5", ["bearing.roller_end=torus"]),
+                        ("6", ["bearing.roller_end=torus", "bearing.rib_opening_angle=6.0"]),
+                        ("8", ["bearing.roller_end=torus", "bearing.rib_opening_angle=8.0"])):
+        model, friction, op = models(["bearing=trb_31313", *PINION, *extra])
+        pb = friction.problem(op, model.solve(op))
+        wc, ok = solve_friction(pb.wc, pb.wR, pb.psi, pb.wi, pb.fresh, pb.case, pb.settings, np.zeros(F.NEV),
+                                np.zeros((model.geometry.Z, F.NFL)), pb.jac)
+        assert ok
+        skews[name] = abs(pb.psi[0])
+        assert 0.0 < skews[name] < pb.case.par.skew_clearance, name
+    assert skews["sphere"] < skews["5"] < skews["6"] < skews["8"]
+

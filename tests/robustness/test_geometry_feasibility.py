@@ -43,6 +43,10 @@ BASES = {
                                 "rib_contact_height_ratio": 0.05, "roller_end_radius_ratio": 0.9}),
     # a strong crown drops the large end below Dwe/2: the rib contact height limits
     "trb_strong_crown": ("trb_32208", {**WIDE, "crown_coefficient": 0.0099}),
+    # the torus roller end (docs/roller_end_torus.md): its rib opening angle limits; on a thin
+    # roller its edge radius reaches the end face's rim within the schema's 5 mm
+    "trb_torus": ("trb_32208", {"roller_end": "torus"}),
+    "trb_torus_thin_roller": ("trb_32208", {**WIDE, "roller_end": "torus", "Dwe": 6.0}),
 }
 INTEGER = {"Z"}
 FACTORS = (1.001, 1.01, 1.03, 1.1, 1.3, 2.0, 4.0, 10.0, 100.0, 1e3, 1e4)
