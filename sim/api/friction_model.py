@@ -167,7 +167,6 @@ class FrictionModel:
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), rib_end=rib_end_hertz(a["rib_end"]),
-                                rib_skew_slip=g.roller_end == "torus",
                                 nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe,
                                 free=raw["free"])
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))

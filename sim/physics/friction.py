@@ -65,10 +65,10 @@ order in psi:
   meridian-plane load on the roller (EV_FU, EV_FV, EV_MW: fed back into the load distribution
   with the cage pocket friction, ``roller_loads``); its power -F_l s_l is ``sliding`` and is
   reported on its own (EV_PSKEW, output ``skew_sliding``); its moment about u'' (first order in
-  psi) enters the roller's spin balance; it has no z-moment. Lateral slip at the rib: the same
-  kinematics for the torus roller end (its power is ``rib``), neglected for the sphere (whose
-  contact slides about five times faster along e_t); the heating of the lateral slip in the film
-  temperature is neglected;
+  psi) enters the roller's spin balance; it has no z-moment, and turned with the contact point to
+  its meridian plane an e_t component f psi a_r F_l, which joins F_t in the force the cage
+  supplies. Lateral slip at the rib: the same kinematics for both roller ends, sphere and torus
+  (its power is ``rib``); the heating of the lateral slip in the film temperature is neglected;
 - moment about the skew axis v' (EV_MS): x F_t of every slice (x = (X - c).u'), M_n (v'.n),
   the rolling couple's v' component, the rib traction at x_rib, and the normal loads turned with
   the contact points: -Q psi f (X_r (n_z v_r - n_r v_z) + n_r (d_r v_z - d_z v_r)), each normal
@@ -262,8 +262,6 @@ ContactLoads = namedtuple("ContactLoads", [
                     # sim.physics.contact.hertz_point_radii(R_t, R_m)[1:]: R_area [mm], the radius of the
                     # circle of the Hertz contact's area, and kappa [1], its semi-axis along e_t over the other
     "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
-    "rib_skew_slip",  # bool: the rib contact slips laterally with the skew (the torus; the sphere model
-                      # leaves it out, docs/roller_end_torus.md)
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
     "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.coupled_slice_loads)
 ])
@@ -835,6 +833,11 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
                 Qk = w * q[j, s, k]
                 ev[EV_MS] -= Qk * psi * f * (Xr * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
                 ev[EV_FT] -= Qk * psi * f * nr
+                # the lateral force turned with the contact point likewise has the e_t component
+                # f psi a_r F_l (as the rib's F_b)
+                ev[EV_FT] += Fl * psi * f * ar
+                if s == 1:              # both react on the inner ring
+                    ev[EV_RING_T] += Qk * psi * f * nr - Fl * psi * f * ar
             Mrr = frr * R_eq[s, k]
             sg = 1.0 if wroll > 0.0 else -1.0
             ev[EV_MU] += Ft * (uz * dr - ur * dz) + Mn * (ur * nr + uz * nz) - sg * Mrr * (ur * ar + uz * az)
@@ -877,11 +880,11 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         bz = nr
         st_rate, sb = rate_slip(rates, True, dr, dz, br, bz, ur, uz)
         st = v1 - v2 + st_rate
-        skew_slip = psi != 0.0 and case.bearing.rib_skew_slip
+        skew_slip = psi != 0.0
         if skew_slip:
-            # the torus's lateral slip of the skew along b (docs/roller_end_torus.md): the slices'
-            # lateral_slip_rate, a surface of revolution about the roller axis touching one about the
-            # bearing axis (its azimuth factor is x_n / r_centre)
+            # the lateral slip of the skew along b (docs/roller_end_torus.md): the slices'
+            # lateral_slip_rate, a surface of revolution about the roller axis (sphere or torus)
+            # touching one about the bearing axis (its azimuth factor is x_n / r_centre)
             sb += psi * lateral_slip_rate(v1, Xrib[j, 0], dr, dz, nr, nz, ur, uz, vr, vz)[0]
         # Hertz semi-axis along e_t [mm]: area Q / p = pi a_t a_m, a_t / a_m = kappa (1 for a circle)
         a_rib = np.sqrt(Qrib[j] * case.bearing.rib_end[5] / (np.pi * prib))
@@ -915,8 +918,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
                 # its moment about the skewed axis u' + psi e_t at the turned contact point (first
                 # order in psi, as the slices' F_l), and the e_t component f psi b_r of b turned to
                 # the contact point's meridian plane (no z-moment: b lies in that plane), which the
-                # roller's orbit takes with the normal load's (the lever f = x_n / r_centre is ~-7 at
-                # the torus rib, ~0.2 at a slice, whose F_l leaves it out)
+                # roller's orbit takes with the normal load's (the lever f = x_n / r_centre: ~-7 at
+                # the torus rib, ~-20 at the sphere's, ~0.2 at a slice)
                 f = x_n / r_centre
                 ev[EV_MU] += Fb * psi * ((dz * br - dr * bz) + f * Xrib[j, 0] * (bz * ur - br * uz)
                                          + f * br * (dr * uz - dz * ur))
@@ -930,6 +933,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             phi = psi * x_n / r_centre
             ev[EV_MS] -= Qrib[j] * phi * (Xrib[j, 0] * (nz * vr - nr * vz) + nr * (dr * vz - dz * vr))
             ev[EV_FT] -= Qrib[j] * phi * nr
+            ev[EV_RING_T] += Qrib[j] * phi * nr
 
 
 @internal_kernel

@@ -90,7 +90,9 @@ THESIS_SKEW_DEG = (0.1, 0.6)
                             "lies 5.6 mm from the bearing axis, so the rib load turns with the skew, a restoring "
                             "stiffness of 7.2e5 of the 7.5e5 N mm/rad against a friction moment of 213 N mm; "
                             "0.007-0.032 deg over the ASSUMED rib ranges, 0.1 deg needs an end-radius ratio of 0.6 "
-                            "(README, dynamic solver)")),
+                            "(README, dynamic solver); the thesis's own torus-plane end (bearing.roller_end=torus, "
+                            "r_k 0.8 mm) skews 0.061 deg at the ASSUMED rib opening of 5 deg and 0.12-0.36 deg at "
+                            "6-10 deg, an angle no source found gives (docs/roller_end_torus.md)")),
 ])
 def test_dynamic_skew_is_of_the_order_of_thesis_fig_7_28(runs, role):
     """Thesis Fig. 7.28 (pinion case, skew and tilt free): roller skew of the order of 0.1-0.6
