@@ -26,6 +26,10 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   right-hand sides and Jacobians barely change, the right-hand side at a moving state costs 0.62 ->
   0.95 ms (TRB 32208) and 0.51 -> 0.80 ms (pinion TSRB): lateral slip integrates both halves of every
   slice's width. Within the 60 s target; the TRB 32208 is outside the 20 s goal at loads above ~5.
+- 2026-11-27, af176ff (with the inner ring's translation in the slip and the tractions' reaction on the
+  ring), median of 3 runs on the idle machine (load 0.1-0.8): TRB 32208 20.3 s CPU (2.03 s/rev, 10185 rhs,
+  407 Jacobians), rhs 0.601 ms; pinion TSRB 8.6 s CPU (0.86 s/rev, 5660 rhs, 193 Jacobians), rhs 0.469 ms.
+  Within the 60 s target; the TRB 32208 at the 20 s goal.
 
 Run from the repository root::
 
