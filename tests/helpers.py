@@ -156,3 +156,35 @@ def halfspace_contact_peak(model, raw, j, race, corner_radius, per_mm, across):
                                                  model.E_star, load=load)
     assert converged
     return float(p.max()), float(x[int(np.argmax(p.max(axis=1)))])
+
+
+def contact_stiffness_and_difference(model, raw, j, cpsi, h=1e-7):
+    """The tangent stiffness K = -df/dy of roller j of a solved state (sim.physics.roller_contact,
+    ring rotation cos(psi_j) = ``cpsi``) and its central finite difference J with step ``h``
+    [mm, rad], in the contact chart y = (a, b along the roller's current axes u', v'; theta;
+    ring delta_a, delta_r): (K, J), both (5, 5). Asserts that no slice changes its contact state
+    within the step (the difference would cross a kink)."""
+    from sim.physics.roller_contact import empty_roller_contact, roller_contact
+
+    n = model.geometry.n_slices
+
+    def forces(pose, ring):
+        state = empty_roller_contact(n)
+        state.pose[:] = pose
+        roller_contact(ring, 0.0, cpsi, model.bearing, model.elasticity, state)
+        return state.f.copy(), state.K.copy(), state.active.copy()
+
+    pose0, ring0 = raw["poses"][j].copy(), raw["ring"].copy()
+    _, K, active = forces(pose0, ring0)
+    th = pose0[2]
+    steps = [np.array([np.cos(th), np.sin(th), 0.0, 0.0, 0.0]), np.array([-np.sin(th), np.cos(th), 0.0, 0.0, 0.0]),
+             np.array([0.0, 0.0, 1.0, 0.0, 0.0]), np.array([0.0, 0.0, 0.0, 1.0, 0.0]),
+             np.array([0.0, 0.0, 0.0, 0.0, 1.0])]
+    J = np.empty((5, 5))
+    for col, e in enumerate(steps):
+        fp, _, act_p = forces(pose0 + h * e[:3], ring0 + h * e[3:])
+        fm, _, act_m = forces(pose0 - h * e[:3], ring0 - h * e[3:])
+        assert np.array_equal(act_p, active) and np.array_equal(act_m, active)  # no slice changes state
+        J[:, col] = -(fp - fm) / (2.0 * h)
+    return K, J
+

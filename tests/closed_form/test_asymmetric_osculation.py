@@ -21,7 +21,7 @@ from sim.api.simulation import build_model
 from sim.api.bearing_model import roller_shift_relative_to_inner_ring
 from sim.physics.contact import (Raceway, RingMotion, SliceContacts, contact_modulus, hertz_line_half_width,
                                  slice_contact_meridian)
-from tests.helpers import case, race_forces, roller_residuals
+from tests.helpers import case, contact_stiffness_and_difference, race_forces, roller_residuals
 
 # kappa per race and point, all different, tighter at the small end (as the tests below need)
 ASYM = {"kappa_outer_small": 0.99, "kappa_outer_large": 0.95, "kappa_inner_small": 0.97, "kappa_inner_large": 0.93}
@@ -230,32 +230,10 @@ def test_roller_stiffness_uses_the_radius_of_the_bounding_arc():
     least smooth (1e-5 of the tangential column a, measured), and round-off eps f / h ~ 1e-9; one
     PCR_LB for both arcs instead (radii 6 % apart) errs by 3e-3 of column a, where the material
     part nearly vanishes (measured with that mutation)."""
-    from sim.physics.roller_contact import empty_roller_contact, roller_contact
-
     model, _, raw = solved("tsrb_pinion", 35000.0, 5000.0, {"kappa_outer_small": 0.99, "kappa_outer_large": 0.93,
                                                          "kappa_inner_small": 0.93, "kappa_inner_large": 0.99},
                            "solver.elasticity=independent")
-    n = model.geometry.n_slices
-
-    def forces(pose, ring):
-        state = empty_roller_contact(n)
-        state.pose[:] = pose
-        roller_contact(ring, 0.0, 1.0, model.bearing, model.elasticity, state)
-        return state.f.copy(), state.K.copy(), state.active.copy()
-
-    pose0, ring0 = raw["poses"][0].copy(), raw["ring"].copy()
-    f0, K, active = forces(pose0, ring0)
-    th = pose0[2]
-    h = 1e-7
-    steps = [np.array([np.cos(th), np.sin(th), 0.0, 0.0, 0.0]), np.array([-np.sin(th), np.cos(th), 0.0, 0.0, 0.0]),
-             np.array([0.0, 0.0, 1.0, 0.0, 0.0]), np.array([0.0, 0.0, 0.0, 1.0, 0.0]),
-             np.array([0.0, 0.0, 0.0, 0.0, 1.0])]
-    J = np.empty((5, 5))
-    for col, e in enumerate(steps):
-        fp, _, act_p = forces(pose0 + h * e[:3], ring0 + h * e[3:])
-        fm, _, act_m = forces(pose0 - h * e[:3], ring0 - h * e[3:])
-        assert np.array_equal(act_p, active) and np.array_equal(act_m, active)  # no slice changes state
-        J[:, col] = -(fp - fm) / (2.0 * h)
+    K, J = contact_stiffness_and_difference(model, raw, 0, 1.0)
     scale = np.abs(J).max(axis=0)
     error = np.abs(K - J).max(axis=0) / scale
     assert np.all(error < 1e-4), error

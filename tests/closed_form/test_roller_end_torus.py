@@ -12,7 +12,7 @@ from sim.api.simulation import build_model
 from sim.geometry import Geometry
 from sim.physics.contact import hertz_point_radii
 from sim.physics.friction import lateral_slip_rate
-from tests.helpers import case, roller_residuals
+from tests.helpers import case, contact_stiffness_and_difference, roller_residuals
 
 
 def torus_geometry(bearing="trb_31313", *overrides):
@@ -156,36 +156,13 @@ def test_torus_rib_stiffness_is_the_exact_derivative_of_the_forces():
     loaded roller. Step 1e-7 mm / rad; tolerance 1e-4 of each column's largest entry, as
     tests/closed_form/test_asymmetric_osculation.py (truncation (h/d)^2 of the least loaded slice,
     round-off eps f / h ~ 1e-9)."""
-    from sim.physics.roller_contact import empty_roller_contact, roller_contact
-
     model = build_model(sim.load_config(["bearing=trb_32208", "bearing.roller_end=torus",
                                          "solver.elasticity=independent"]))
     raw = model.solve(case(4500.0, 2000.0, speed=0.0))
     assert raw["converged"]
-    n = model.geometry.n_slices
     j = int(np.argmax(raw["Q_rib"]))
     assert raw["Q_rib"][j] > 0.0
-    cpsi = np.cos(2.0 * np.pi * j / model.geometry.Z)
-
-    def forces(pose, ring):
-        state = empty_roller_contact(n)
-        state.pose[:] = pose
-        roller_contact(ring, 0.0, cpsi, model.bearing, model.elasticity, state)
-        return state.f.copy(), state.K.copy(), state.active.copy()
-
-    pose0, ring0 = raw["poses"][j].copy(), raw["ring"].copy()
-    f0, K, active = forces(pose0, ring0)
-    th = pose0[2]
-    h = 1e-7
-    steps = [np.array([np.cos(th), np.sin(th), 0.0, 0.0, 0.0]), np.array([-np.sin(th), np.cos(th), 0.0, 0.0, 0.0]),
-             np.array([0.0, 0.0, 1.0, 0.0, 0.0]), np.array([0.0, 0.0, 0.0, 1.0, 0.0]),
-             np.array([0.0, 0.0, 0.0, 0.0, 1.0])]
-    J = np.empty((5, 5))
-    for col, e in enumerate(steps):
-        fp, _, act_p = forces(pose0 + h * e[:3], ring0 + h * e[3:])
-        fm, _, act_m = forces(pose0 - h * e[:3], ring0 - h * e[3:])
-        assert np.array_equal(act_p, active) and np.array_equal(act_m, active)
-        J[:, col] = -(fp - fm) / (2.0 * h)
+    K, J = contact_stiffness_and_difference(model, raw, j, np.cos(2.0 * np.pi * j / model.geometry.Z))
     scale = np.abs(J).max(axis=0)
     assert np.all(np.abs(K - J).max(axis=0) / scale < 1e-4)
 
