@@ -227,7 +227,8 @@ class BearingModel:
             roller's inner-raceway and rib contacts, :func:`sim.physics.friction.friction_loads`)
             in the roller's meridian plane: [0] along e_r [N], [1] along e_z [N]. The ring balances
             them with Fa and Fr: they are added to Fa (their sum along z) and Fr (their sum along x,
-            sum of [0] cos(psi_j); exactly 0 when all rollers carry the same, the axisymmetric
+            sum of [0] cos(psi_j), of either sign: under an imposed tilt with Fr = 0 the ring then
+            takes a small radial load; exactly 0 when all rollers carry the same, the axisymmetric
             case). None means zeros.
         start : dict, optional
             A converged result of ``solve`` for the same ``op`` (other roller loads): its ring
@@ -267,9 +268,9 @@ class BearingModel:
             Fa += float(ring_ext[:, 1].sum())
             if np.any(ring_ext[:, 0] != ring_ext[0, 0]):
                 Fr += float(ring_ext[:, 0] @ np.cos(2.0 * np.pi * np.arange(g.Z) / g.Z))
-            if Fa <= 0.0 or Fr < 0.0:
-                raise InputError(f"the friction loads on the inner ring reverse the applied load: Fa {op.Fa} N -> {Fa} N, "
-                                 f"Fr {op.Fr} N -> {Fr} N (allowed: Fa > 0, Fr >= 0)")
+            if Fa <= 0.0:
+                raise InputError(f"the friction loads on the inner ring reverse the applied axial load: load.Fa = "
+                                 f"{op.Fa} N -> {Fa} N (allowed: > 0)")
         problem = QuasiStaticProblem(self.bearing, self.elasticity, self.newton, self.body_loads(op))
         rollers = RollerSet(np.zeros((g.Z, 3)), np.zeros((g.Z, 2, n)), np.zeros((g.Z, 2, n), dtype=np.bool_),
                             np.zeros((g.Z, 2)), np.zeros(g.Z), np.zeros((g.Z, 4)), empty_frames(g.Z, n),
@@ -303,7 +304,7 @@ class BearingModel:
             converged = run(Fa, Fr, tilt_rad, ring, False)
             iterations += reports[-1].iterations
             steps += 1
-        if not converged and s.continuation_steps > 1 and (Fr > 0.0 or tilt_rad != 0.0 or np.any(ext_case != 0.0)):
+        if not converged and s.continuation_steps > 1 and (Fr != 0.0 or tilt_rad != 0.0 or np.any(ext_case != 0.0)):
             # continuation (Allgower & Georg 2003, Introduction to Numerical Continuation Methods,
             # ch. 1): from the axisymmetric case (Fa alone, solved with the ring under load
             # control) to the case along lam in [0, 1] (Fr, tilt and roller loads times lam), each

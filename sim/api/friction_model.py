@@ -282,9 +282,15 @@ def coupled_solution(model, friction, op):
     """Load distribution and friction of one case with the friction loads fed back: the friction
     loads on the rollers and their reaction on the inner ring (:meth:`FrictionModel.evaluate`:
     ``roller_loads``, ``ring_loads``) enter :meth:`sim.api.bearing_model.BearingModel.solve`, whose
-    solution gives the next friction loads; a fixed-point iteration until they change by less than
-    ``friction.load_coupling_tolerance`` x the largest roller load (the moments over Lwe) between
-    passes, at most ``friction.load_coupling_passes`` passes.
+    solution gives the next friction loads g(x) of the applied ones x; iterated until they change
+    by less than ``friction.load_coupling_tolerance`` x the largest roller load (the moments over
+    Lwe) between passes, at most ``friction.load_coupling_passes`` passes. From the second pass
+    on the next applied loads are Anderson-mixed (depth 1, the secant method on the fixed point:
+    Anderson 1965, J. ACM 12, 547; Walker & Ni 2011, SIAM J. Numer. Anal. 49, 1715):
+    x' = g_k - theta (g_k - g_(k-1)), theta = f_k.(f_k - f_(k-1)) / |f_k - f_(k-1)|^2, f = g(x) - x.
+    Measured: the plain iteration contracts by 0.07-0.1 per pass on the skewed cases of the tests
+    and by -0.5 (alternating) on a TRB 32208 under an imposed tilt with skew, which it did not
+    settle in 8 passes; the mixing settles both in 3-4.
 
     Returns (raw, fr): the last solve and the friction evaluation at it, with
     ``fr["coupling_converged"]`` whether the fixed point settled (it may not: a skewed TSRB whose
@@ -297,19 +303,33 @@ def coupled_solution(model, friction, op):
     if not raw["converged"]:
         return raw, None
     fr = friction.evaluate(op, raw)
-    Lwe = model.geometry.Lwe
+    scale = np.ones(NFL)
+    scale[FL_W] = 1.0 / model.geometry.Lwe          # moments [N mm] over Lwe: forces [N]
 
     def loads(res):
-        return np.hstack([res["roller_loads"][:, :2], res["roller_loads"][:, 2:] / Lwe, res["ring_loads"]])
+        return np.hstack([res["roller_loads"], res["ring_loads"]])
 
+    x = loads(fr)               # the next applied loads (Z, NFL)
+    previous = None             # (g, f) of the previous pass
     for _ in range(friction.load_coupling_passes):
         if not fr["friction_converged"]:
             return raw, fr | {"coupling_converged": False}
-        applied = loads(fr)
-        raw = model.solve(op, roller_loads=fr["roller_loads"], ring_loads=fr["ring_loads"], start=raw)
+        raw = model.solve(op, roller_loads=x[:, FL_U:FL_W + 1], ring_loads=x[:, FL_RING_R:FL_RING_Z + 1], start=raw)
         if not raw["converged"]:
             return raw, fr | {"friction_converged": False, "coupling_converged": False}
         fr = friction.evaluate(op, raw, start=fr["kinematics"])
-        if fr["friction_converged"] and np.abs(loads(fr) - applied).max() <= friction.load_coupling_tolerance * raw["Q"].max():
+        if not fr["friction_converged"]:
+            continue
+        g = loads(fr)
+        f = (g - x) * scale
+        if np.abs(f).max() <= friction.load_coupling_tolerance * raw["Q"].max():
             return raw, fr | {"coupling_converged": True}
+        if previous is None:
+            x = g
+        else:
+            df = f - previous[1]
+            dd = float(np.sum(df * df))
+            theta = float(np.sum(f * df)) / dd if dd > 0.0 else 0.0
+            x = g - theta * (g - previous[0])
+        previous = (g, f)
     return raw, fr | {"coupling_converged": False}

@@ -88,7 +88,12 @@ PINION_SKEW = ["load.Fa=35000", "load.Fr=0", "load.speed=1100", "lubricant=pinio
     ["bearing=tsrb_pinion", *PINION_SKEW], ["bearing=trb_31313", *PINION_SKEW],
     ["bearing=trb_32208", "load.Fa=4500", "load.Fr=2000", "friction.skew.enabled=true"],
     ["bearing=tsrb_reference", "load.Fa=4000", "load.Fr=4000", "friction.skew.enabled=true"],
-], ids=["tsrb_pinion_skew", "trb_31313_skew", "trb_32208_combined_skew", "tsrb_reference_combined_skew"])
+    # an imposed tilt and no Fr: the reaction's x-sum (-22 N at +0.25 deg) is the ring's only radial
+    # load; at -0.25 deg the plain fixed point alternates (factor -0.5) and the mixing settles it
+    ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.tilt=0.25", "friction.skew.enabled=true"],
+    ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.tilt=-0.25", "friction.skew.enabled=true"],
+], ids=["tsrb_pinion_skew", "trb_31313_skew", "trb_32208_combined_skew", "tsrb_reference_combined_skew",
+        "trb_32208_tilt_skew", "trb_32208_negative_tilt_skew"])
 def test_inner_ring_balances_the_reaction_of_its_contacts_tractions(model_for, overrides):
     """With skew the lateral tractions of the inner raceway (and the TRB's rib) push the inner ring
     along its axis (sim.physics.friction, "Rates"; 1-3 % of Fa here). The ring's balance recomputed
@@ -106,7 +111,7 @@ def test_inner_ring_balances_the_reaction_of_its_contacts_tractions(model_for, o
     op = operating_points(resolved(cfg)["load"])[0]
     raw, fr = coupled_solution(model, build_friction(cfg, model), op)
     assert raw["converged"] and fr["friction_converged"]
-    Fx, Fz = race_forces(model, raw, 1)
+    Fx, Fz = race_forces(model, raw, 1, op.tilt_deg)
     psi = 2.0 * np.pi * np.arange(model.geometry.Z) / model.geometry.Z
     rib = raw["Q_rib"][:, None] * raw["rib_contact"][:, 2:4]         # +Q_rib n on the ring (n into the rib)
     Fx += rib[:, 0] @ np.cos(psi)
@@ -118,6 +123,7 @@ def test_inner_ring_balances_the_reaction_of_its_contacts_tractions(model_for, o
     assert abs(Rz) > 5e-3 * op.Fa
     assert abs(op.Fa + Fz + Rz) < 1e-4 * op.Fa
     assert abs(op.Fr + Fx + Rx) < 1e-4 * max(op.Fa, op.Fr)
+    assert fr["coupling_converged"]
 
 
 def test_friction_load_coupling_iterates_to_its_tolerance_or_reports_unconverged():
