@@ -12,7 +12,7 @@ from sim.config_schema import LoadConfig, SolverConfig, check_node
 from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
-from sim.physics.contact import contact_modulus, hertz_line_pressure
+from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii
 from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_interference, influence_matrix,
                                    loaded_lengths)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
@@ -110,9 +110,14 @@ class BearingModel:
         self.elasticity = SliceElasticity(influence_matrix(a["x"], a["w"], self.E_star), float(self.E_star),
                                           ELASTICITY_MODES[s.elasticity], float(k_line))
         contiguous = np.ascontiguousarray
+        # the rib contact's Hertz load law depends on the geometry only: its equivalent sphere
+        # radius once here, not per contact evaluation (sim.physics.roller_contact.BearingArrays)
+        rib = np.array(a["rib"], dtype=float)
+        if g.type == "TRB":
+            rib[5] = hertz_point_radii(rib[5], rib[2])[0]
         self.bearing = BearingArrays(contiguous(a["x"], dtype=float), contiguous(a["rho"], dtype=float), float(a["w"]),
                                      contiguous(a["race_kind"], dtype=np.int64), contiguous(a["race_par"], dtype=float),
-                                     contiguous(a["R_eq"], dtype=float), contiguous(a["rib"], dtype=float),
+                                     contiguous(a["R_eq"], dtype=float), rib,
                                      float(g.alpha), float(g.Dpw), float(g.Lwe), int(g.Z), g.type == "TRB")
         self.newton = NewtonSettings(float(s.tolerance), int(s.max_iterations), int(s.roller_max_iterations),
                                      float(s.roller_tolerance_ratio), float(s.forcing),

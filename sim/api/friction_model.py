@@ -143,6 +143,7 @@ class FrictionModel:
             inlet_heating=bool(friction["inlet_shear_heating"]), boundary_only=False, skew=skew_on,
             skew_clearance=skew_clearance, skew_stiffness=skew_stiffness)
         self.quad = width_quadrature(friction["width_points"])
+        self.rib_end = rib_end_hertz(g.arrays["rib_end"])     # geometry only: once, not per case
 
     def problem(self, op, raw, start=None):
         """The kinematic problem of one solved case (raw: BearingModel.solve output), as
@@ -166,7 +167,7 @@ class FrictionModel:
                                boundary_only=True)
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
-                                E_star=float(self.E_star), rib_end=rib_end_hertz(a["rib_end"]),
+                                E_star=float(self.E_star), rib_end=self.rib_end,
                                 nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe,
                                 free=raw["free"])
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
@@ -311,15 +312,15 @@ def coupled_solution(model, friction, op):
 
     x = loads(fr)               # the next applied loads (Z, NFL)
     previous = None             # (g, f) of the previous pass
+    if not fr["friction_converged"]:
+        return raw, fr | {"coupling_converged": False}
     for _ in range(friction.load_coupling_passes):
-        if not fr["friction_converged"]:
-            return raw, fr | {"coupling_converged": False}
         raw = model.solve(op, roller_loads=x[:, FL_U:FL_W + 1], ring_loads=x[:, FL_RING_R:FL_RING_Z + 1], start=raw)
         if not raw["converged"]:
             return raw, fr | {"friction_converged": False, "coupling_converged": False}
         fr = friction.evaluate(op, raw, start=fr["kinematics"])
         if not fr["friction_converged"]:
-            continue
+            return raw, fr | {"coupling_converged": False}
         g = loads(fr)
         f = (g - x) * scale
         if np.abs(f).max() <= friction.load_coupling_tolerance * raw["Q"].max():

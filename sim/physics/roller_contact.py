@@ -34,8 +34,8 @@ import numpy as np
 from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import solve_dense
 from sim.geometry import RACE_LENS
-from sim.physics.contact import (NO_CONTACT, Raceway, RingMotion, SliceContacts, hertz_point_load, hertz_point_radii,
-                                 lens_penetration, roller_axes, slice_contact_meridian, to_ring)
+from sim.physics.contact import (NO_CONTACT, Raceway, RingMotion, SliceContacts, hertz_point_load, lens_penetration,
+                                 roller_axes, slice_contact_meridian, to_ring)
 from sim.physics.elasticity import INDEPENDENT, coupled_slice_compliance, coupled_slice_loads, independent_slice_loads
 
 NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'), theta, delta_a, delta_r
@@ -46,7 +46,9 @@ NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'),
 # ring coordinates (sim.physics.contact); R_eq (2, N): radii of relative curvature per race and
 # slice [mm]; rib (6,): centre (c_x, c_y) and radius of the roller end's circle that touches the rib in
 # the meridian plane (end sphere, or the torus's tube section) [mm], unit rib normal (n_x, n_y) into the
-# rib in the roller frame, relative radius of curvature along e_t [mm] (sim.geometry; zeros for a TSRB); alpha: roller-axis angle
+# rib in the roller frame, radius of the sphere on a plane with the rib contact's Hertz load law
+# [mm] (sim.geometry's relative radius along e_t made so by sim.api.bearing_model with
+# sim.physics.contact.hertz_point_radii; the circle's own radius for the sphere; zeros for a TSRB); alpha: roller-axis angle
 # [rad]; Dpw: pitch diameter [mm]; Lwe: roller length [mm]; Z: number of rollers; has_rib: the
 # inner ring guides the rollers by a rib (TRB).
 BearingArrays = namedtuple("BearingArrays", ["x", "rho", "w", "race_kind", "race_par", "R_eq", "rib", "alpha",
@@ -339,8 +341,7 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
         nwr = cp * n0r - sp * n0z
         nwz = sp * n0r + cp * n0z
         # circular (sphere) or elliptical (torus) Hertz: the equivalent sphere of the same Q(delta)
-        R_load = hertz_point_radii(rib[5], R_end)[0]
-        Qr, dQ = hertz_point_load(drib, R_load, elasticity.E_star)
+        Qr, dQ = hertz_point_load(drib, rib[5], elasticity.E_star)
         g[0] = nwr * ur + nwz * uz
         g[1] = nwr * vr + nwz * vz
         # d centre / dtheta = cx v' - cy u'
