@@ -92,8 +92,12 @@ PINION_SKEW = ["load.Fa=35000", "load.Fr=0", "load.speed=1100", "lubricant=pinio
     # load; at -0.25 deg the plain fixed point alternates (factor -0.5) and the mixing settles it
     ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.tilt=0.25", "friction.skew.enabled=true"],
     ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.tilt=-0.25", "friction.skew.enabled=true"],
+    # the torus roller end (docs/roller_end_torus.md): its rib slips laterally with the skew, and the
+    # reaction of that traction, turned to the contact point's meridian plane, acts on the ring
+    ["bearing=trb_31313", "bearing.roller_end=torus", *PINION_SKEW],
+    ["bearing=trb_32208", "bearing.roller_end=torus", "load.Fa=4500", "load.Fr=2000", "friction.skew.enabled=true"],
 ], ids=["tsrb_pinion_skew", "trb_31313_skew", "trb_32208_combined_skew", "tsrb_reference_combined_skew",
-        "trb_32208_tilt_skew", "trb_32208_negative_tilt_skew"])
+        "trb_32208_tilt_skew", "trb_32208_negative_tilt_skew", "trb_31313_torus_skew", "trb_32208_torus_combined_skew"])
 def test_inner_ring_balances_the_reaction_of_its_contacts_tractions(model_for, overrides):
     """With skew the lateral tractions of the inner raceway (and the TRB's rib) push the inner ring
     along its axis (sim.physics.friction, "Rates"; 1-3 % of Fa here). The ring's balance recomputed
