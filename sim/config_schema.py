@@ -155,9 +155,11 @@ ROUGHNESS_NOTE = ("below 1 nm a surface is atomically smooth: finished raceways 
 
 
 #: the TRB roller end / rib contact models (sim.geometry.Geometry._rib_arrays, docs/roller_end_torus.md)
-ROLLER_END_NOTE = ("sphere: a roller-end sphere (roller_end_radius_ratio) on a locally flat rib at "
+ROLLER_END_NOTE = ("sphere: a roller-end sphere (roller_end_radius_ratio) on a cone rib at "
                    "rib_contact_height_ratio; torus: the thesis's flat end face with edge radius "
                    "roller_end_edge_radius on a cone rib opened by rib_opening_angle (thesis 5.5.1)")
+END_SPHERE_NOTE = ("roller-end sphere radius over the apex-to-large-end distance; at 1 the sphere is centred on the "
+                   "bearing axis and conforms to the cone rib along the circumference (sim.geometry._sphere_rib)")
 EDGE_RADIUS_NOTE = ("edge radius r_k of the flat roller end face, the torus's tube radius (thesis Table A.2: 0.8 mm for "
                     "the TRB 32208); above 5 mm it would be no edge of a bearing roller; sim.geometry refuses an "
                     "r_k that leaves no flat face")
@@ -218,7 +220,8 @@ class BearingConfig:
                                    "diameters; sim.geometry refuses a Z that leaves less")
     b_m: Any = key(Number(0.0, low_open=True))
     crown_coefficient: Any = key(Number(0.0, 0.01, True, True), only="TRB")
-    roller_end_radius_ratio: Any = key(Number(0.3, 1.0, low_open=True), only="TRB")
+    roller_end_radius_ratio: Any = key(Number(0.3, 1.0, low_open=True, high_open=True), only="TRB",
+                                       note=END_SPHERE_NOTE)
     rib_contact_height_ratio: Any = key(Number(0.0, 0.5, True, True), only="TRB")
     roller_end: Any = key(Choice(("sphere", "torus")), only="TRB", note=ROLLER_END_NOTE)
     roller_end_edge_radius: Any = key(Number(0.0, 5.0, low_open=True, units="mm"), only="TRB",

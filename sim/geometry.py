@@ -551,9 +551,10 @@ class Geometry:
 
         ``roller_end = "sphere"`` (dimensions ASSUMED, see conf/bearing): roller end a sphere of
         radius R_end = roller_end_radius_ratio * (apex distance to the large end face), centred on
-        the roller axis; the rib an inner-ring face touching it at the nominal pose at a height
-        e = rib_contact_height_ratio * Dwe above the inner raceway, locally a plane (its curvature
-        is neglected in the Hertz contact).
+        the roller axis; the rib an inner-ring cone touching it at the nominal pose at a height
+        e = rib_contact_height_ratio * Dwe above the inner raceway (:meth:`_sphere_rib`): straight
+        in the meridian plane, concave along e_t, so the Hertz contact is an ellipse elongated
+        along e_t.
 
         ``roller_end = "torus"`` (the thesis's TRB model, 5.5.1): a flat end face whose edge is
         rounded with r_k (a torus: tube radius r_k, tube centre circle of radius a, the rim, at
@@ -569,7 +570,7 @@ class Geometry:
         rib : ndarray (6,)
             (c_x, c_y, r, n_x, n_y, R_t) [mm, 1] in the roller frame: centre of the touching circle
             (sphere centre, or tube section centre), its radius, unit rib normal into the rib,
-            and the relative radius of curvature along e_t (R_t = r: circular contact).
+            and the relative radius of curvature along e_t, R_t.
         rib_end : ndarray (4,)
             (R_n, x_n, R_t, R_m) [mm]: distance from the contact point along the normal to the
             roller axis (the end's principal radius about that axis), where the normal meets
@@ -581,13 +582,53 @@ class Geometry:
             t = self._torus_rib(np.radians(self.rib_opening_angle))
             rib = np.array([t["c_x"], -t["a"], self.roller_end_edge_radius, t["n_x"], t["n_y"], t["Rx"]])
             return rib, np.array([t["R_n"], t["x_n"], t["Rx"], self.roller_end_edge_radius])
-        R_end = self.roller_end_radius_ratio * (self.apex_distance + half)
+        s = self._sphere_rib()
+        return (np.array([s["c_x"], 0.0, s["R_end"], s["n_x"], s["n_y"], s["Rx"]]),
+                np.array([s["R_end"], s["c_x"], s["Rx"], s["R_end"]]))
+
+    def _rib_circumferential_curvature(self, x_p, y_p, n_x, n_y, R_n):
+        """Relative curvature along e_t [1/mm] of a roller end touching the inner ring's rib at
+        the point (x_p, y_p) [mm] of the roller frame, with unit normal (n_x, n_y) into the rib and
+        the end's principal radius about the roller axis R_n [mm] (the distance along the normal
+        from the point to the roller axis: a surface of revolution about it), and the point's
+        radius X_r [mm] and normal's radial component n_r [1].
+
+        The rib is a surface of revolution about the bearing axis: along its parallel circle, e_t,
+        its normal curvature is n_r / X_r (Meusnier's theorem), concave seen from the roller when
+        its normal into the rib points outwards (n_r > 0). The end's curvature along e_t is 1/R_n,
+        so the relative one is 1/R_n - n_r / X_r (Johnson 1985, 4.1: sum of both bodies'
+        curvatures, concave negative); not positive means the end would conform to the rib or
+        touch it off the meridian plane."""
+        X_r = 0.5 * self.Dpw + x_p * np.sin(self.alpha) + y_p * np.cos(self.alpha)
+        n_r = n_x * np.sin(self.alpha) + n_y * np.cos(self.alpha)
+        return 1.0 / R_n - n_r / X_r, X_r, n_r
+
+    def _sphere_rib(self, ratio=None):
+        """Sphere / cone-rib contact at the nominal pose (``roller_end = "sphere"``).
+
+        The end sphere, radius R_end = roller_end_radius_ratio x (apex distance + Lwe/2), centred
+        on the roller axis at c_x = Lwe/2 - R_end, touches the rib at the height
+        rib_contact_height_ratio x Dwe above the inner raceway; the rib's generatrix there is
+        tangent to the sphere (straight: relative radius R_end across e_t, in the meridian plane),
+        and the rib is a cone about the bearing axis, so along e_t its concave circumferential
+        curvature is subtracted from the sphere's (:meth:`_rib_circumferential_curvature`). The
+        normal through the sphere centre meets the bearing axis near the apex, so the rib's
+        circumferential radius is close to the apex distance and the end conforms to the rib
+        along e_t by about roller_end_radius_ratio: R_t ~ R_end / (1 - ratio), a contact ellipse
+        elongated along e_t. At ratio 1 the sphere is centred on the apex, on the bearing axis, where
+        the rib's normal meets it too: it conforms to the rib along e_t (Rx = inf, the schema's open
+        bound). ``ratio`` replaces roller_end_radius_ratio.
+        """
+        half = 0.5 * self.Lwe
+        R_end = (self.roller_end_radius_ratio if ratio is None else ratio) * (self.apex_distance + half)
         rho_large = float(self.roller_radius(half * (1 - 1e-9)))
         y_c = -(rho_large - self.rib_contact_height_ratio * self.Dwe)
-        cx = half - R_end
-        x_c = cx + np.sqrt(R_end**2 - y_c**2)
-        n = np.array([x_c - cx, y_c]) / R_end
-        return np.array([cx, 0.0, R_end, n[0], n[1], R_end]), np.array([R_end, cx, R_end, R_end])
+        c_x = half - R_end
+        x_c = c_x + np.sqrt(R_end**2 - y_c**2)
+        n_x, n_y = (x_c - c_x) / R_end, y_c / R_end
+        k_t, X_r, n_r = self._rib_circumferential_curvature(x_c, y_c, n_x, n_y, R_end)
+        return {"c_x": c_x, "R_end": R_end, "n_x": n_x, "n_y": n_y, "X_r": X_r, "n_r": n_r,
+                "Rx": 1.0 / k_t if k_t > 0.0 else -np.inf}
 
     def _torus_rim(self, r_k):
         """Rim radius a [mm] of a flat end face with edge radius r_k [mm]: the distance from the
@@ -620,9 +661,7 @@ class Geometry:
         n_x, n_y = np.cos(opening), -np.sin(opening)
         x_p, y_p = c_x + r_k * n_x, -a + r_k * n_y
         R_n = r_k + a / np.sin(opening)
-        X_r = 0.5 * self.Dpw + x_p * np.sin(self.alpha) + y_p * np.cos(self.alpha)
-        n_r = np.sin(self.alpha - opening)
-        k_t = 1.0 / R_n - n_r / X_r
+        k_t, X_r, n_r = self._rib_circumferential_curvature(x_p, y_p, n_x, n_y, R_n)
         return {"c_x": c_x, "a": a, "n_x": n_x, "n_y": n_y, "R_n": R_n, "x_n": c_x - a * n_x / np.sin(opening),
                 "X_r": X_r, "n_r": n_r, "Rx": 1.0 / k_t if k_t > 0.0 else -np.inf}
 

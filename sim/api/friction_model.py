@@ -55,7 +55,7 @@ def rib_end_hertz(rib_end):
     """The friction kernels' roller-end array (:data:`sim.physics.friction.ContactLoads` ``rib_end``,
     (6,)): the geometry's (R_n, x_n, R_t, R_m) [mm] followed by the equivalent-circle radius of the
     Hertz contact area [mm] and its ellipticity along e_t [1]
-    (:func:`sim.physics.contact.hertz_point_radii`; R_t, 1 for the sphere's circular contact)."""
+    (:func:`sim.physics.contact.hertz_point_radii`)."""
     R_t, R_m = float(rib_end[2]), float(rib_end[3])
     _, R_area, kappa = hertz_point_radii(R_t, R_m) if R_t > 0.0 else (0.0, 0.0, 0.0)   # 0: no rib (TSRB)
     return np.array([*(float(v) for v in rib_end), R_area, kappa])

@@ -101,7 +101,12 @@ def film_point(u, Q, Rx, Ry, eta0, alpha_p, E_prime):
 
     h_c / Rx' = 2.69 U^0.67 G^0.53 W^-0.067 (1 - 0.61 exp(-0.73 k)), with 1/Rx' = 1/Rx (the
     rolling-direction radius), U = eta0 u/(E' Rx), W = Q/(E' Rx^2), G = alpha_p E' and the
-    ellipticity k = (Ry/Rx)^(2/pi) (Hamrock & Brewe 1983).
+    ellipticity k = (Ry/Rx)^(2/pi) (Hamrock & Brewe 1983). Hamrock & Dowson fitted k = 1-8
+    (entrainment along the minor axis); the TRB's roller-end / rib contact is elongated along its
+    entrainment, k ~ 0.24 (sim.geometry._sphere_rib), where the same formula is used: Koye & Winer
+    1981 (J. Lubr. Technol. 103, 284) measured 57 films of crowned rollers on a sapphire disc with
+    the ellipse's major axis both along and across the motion and found them on average 30 % thicker
+    than this formula (the minimum film; the k range they covered is not checked here).
 
     Parameters
     ----------

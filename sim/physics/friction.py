@@ -258,7 +258,7 @@ ContactLoads = namedtuple("ContactLoads", [
                     # [mm]: R_n, distance from the contact point along the rib normal to the roller axis (the
                     # end sphere's radius; the torus's r_k + rim / sin(opening)); x_n, where that normal meets
                     # the roller axis, along u' from the roller centre (the sphere's centre); R_t, R_m, relative
-                    # radii of curvature along e_t and across it (equal for the sphere: circular contact); then
+                    # radii of curvature along e_t and across it (sim.geometry: the rib is a cone); then
                     # sim.physics.contact.hertz_point_radii(R_t, R_m)[1:]: R_area [mm], the radius of the
                     # circle of the Hertz contact's area, and kappa [1], its semi-axis along e_t over the other
     "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
@@ -554,9 +554,9 @@ def lubrication_state(wR, wc, wi, active, case):
             u = 0.5 * abs(v1 + v2)
             R_t = brg.rib_end[2]
             R_m = brg.rib_end[3]
-            # Hertz point contact: circular for the sphere on a locally flat rib, a = (3 Q R / (4 E*))^(1/3)
-            # (Johnson 4.22); elliptical for the torus on the cone rib, a the radius of the circle of the
-            # same area (R = R_area, sim.physics.contact.hertz_point_radii)
+            # Hertz point contact of the end (sphere or torus) on the cone rib: elliptical, a the radius of
+            # the circle of the same area, a = (3 Q R_area / (4 E*))^(1/3) (Johnson 4.22 with
+            # R_area of sim.physics.contact.hertz_point_radii)
             a = (3.0 * Qrib[j] * brg.rib_end[4] / (4.0 * E_star)) ** (1.0 / 3.0)
             prib = Qrib[j] / (np.pi * a * a)
             if par.boundary_only:       # no film at the rib either (above)

@@ -116,42 +116,56 @@ def test_sensitivity_base_row_is_the_reported_model_and_the_rib_height_acts_on_t
     assert "## e. Sensitivity to the assumed parameters" in text
 
 
-def test_rolling_dominated_speed_and_viscosity_dependence_agrees_with_skf(report):
-    """Section f, published model at cases the targets do not name (TRB 31313, other speeds and oil
-    temperatures): where EHL rolling resistance carries at least 90 % of the torque in this model
-    and in SKF 2004 (TRB 32208 4.5 kN and TRB 31313 10 kN at 40 degC), the torque's exponents on
-    speed (1000-4000 rpm) and on viscosity (40-70 degC, 4000 rpm) agree with SKF's within 0.1:
+def test_rolling_moment_speed_and_viscosity_dependence_agrees_with_skf(report):
+    """Section f, published model at cases the targets do not name (TRB 32208 and TRB 31313, four
+    speeds, three oil temperatures): the rolling moments (this model: rolling + hysteresis; SKF
+    2004: M_rr), both EHL rolling resistance with an inlet shear-heating factor, have exponents on
+    speed (1000-4000 rpm) and on viscosity (40-70 degC) within 0.1 of each other at every case:
     the isothermal rolling-force exponents differ by 0.058 ((eta0 u)^0.658, Goksem & Hargreaves
     1978, against SKF's (nu n)^0.6) and the two inlet shear-heating factors differ. Every such
     exponent is also inside 0.25-0.7, the range between a heavily heated and an isothermal EHL
-    rolling loss. Checked on the numbers themselves (the exponents are refitted here), and at
-    least one case of each kind must be rolling-dominated, so the test cannot pass empty."""
+    rolling loss. Checked on the numbers themselves (refitted here from the rolling moments).
+    The torques are not compared this way: SKF's sliding moment, up to a tenth of its torque,
+    falls steeply with speed where its mixed-film weighting is on, and this model's rib friction
+    falls with its film (the next test)."""
     _, ds, _ = report
-    axes = {"speed": ("speed_sweep", "temperature_sweep", ds.speed_sweep.values, "speed_fit_rolling"),
-            "viscosity": ("temperature_sweep", "speed_sweep", ds.kinematic_viscosity.values, "viscosity_fit_rolling")}
+    axes = {"speed": ("speed_sweep", "temperature_sweep", ds.speed_sweep.values),
+            "viscosity": ("temperature_sweep", "speed_sweep", ds.kinematic_viscosity.values)}
     checked = {}
-    for kind, (along, other, x, dominated) in axes.items():
-        cases = [(c, v) for c in ds.speed_case.values for v in ds[other].values
-                 if ds[dominated].sel(speed_case=c, **{other: v})]
+    for kind, (along, other, x) in axes.items():
+        lo, hi = validation.SPEED_FIT_RANGE if kind == "speed" else (-np.inf, np.inf)
+        fit = (x >= lo) & (x <= hi)
+        cases = [(c, v) for c in ds.speed_case.values for v in ds[other].values]
         for c, v in cases:
-            M = ds.torque_speed.sel(speed_case=c, **{other: v}).transpose(along, "source")
-            n = [np.polyfit(np.log(x), np.log(M.sel(source=s).values), 1)[0] for s in ds.source.values]
+            M = ds.rolling_torque_speed.sel(speed_case=c, **{other: v}).transpose(along, "source")
+            n = [np.polyfit(np.log(x[fit]), np.log(M.sel(source=s).values[fit]), 1)[0] for s in ds.source.values]
             assert abs(n[0] - n[1]) <= validation.EXPONENT_TOLERANCE, (kind, c, v, n)
             assert 0.25 <= n[0] <= 0.7, (kind, c, v, n)
         checked[kind] = len(cases)
-    assert checked["speed"] >= 2 and checked["viscosity"] >= 2, checked
+    assert checked == {"speed": ds.sizes["speed_case"] * ds.sizes["temperature_sweep"],
+                       "viscosity": ds.sizes["speed_case"] * ds.sizes["speed_sweep"]}
 
 
 def test_where_the_rib_decides_its_friction_falls_with_speed(report):
     """Section f, the part where the models differ, stated as what this model does: at the TRB
-    31313's pinion load (35 kN) the rib carries more than a fifth of the torque, and its friction
-    falls with speed at every oil temperature (the rib film builds, its mixed-film share drops),
-    so the torque's speed exponent is below SKF's, whose full-film flange friction is constant."""
+    31313's pinion load (35 kN) the rib carries more than a tenth of the torque (15 % at 1000 rpm,
+    40 degC). Where SKF's mixed-film weighting phi_bl is off (below 0.01, 40 degC: its flange
+    friction is the full-film mu_EHL = 0.002, constant), this model's rib is in full film too, and
+    its friction falls with speed because its film heats (isothermal it would rise with the
+    viscous shear: 324 -> 536 N mm from 1000 to 4000 rpm; with heating 268 -> 183;
+    test_shear_heating_lowers_the_rib_friction_where_the_rib_heats), so the torque's speed
+    exponent is below SKF's there. (Hot oil, 70 degC: the rib friction first falls as its
+    mixed-film share drops, 287 -> 235 N mm from 500 to 1000 rpm, then rises with the viscous
+    shear; SKF's own sliding moment falls steeply with speed where phi_bl is on, and its exponent
+    drops below this model's.)"""
     _, ds, _ = report
     c = "TRB 31313, 35 kN"
     rib = ds.rib_torque_speed.sel(speed_case=c)
     total = ds.torque_speed.sel(speed_case=c, source="this model")
-    assert float((rib / total).max()) > 0.2
-    assert np.all(rib.diff("speed_sweep") < 0.0)
+    assert float((rib / total).max()) > 0.1
+    full_film = (ds.skf_phi_bl_speed.sel(speed_case=c) < 0.01).all("speed_sweep")
+    assert bool(full_film.any())
+    falls = (rib.diff("speed_sweep") < 0.0).all("speed_sweep")
     x = ds.speed_exponent.sel(speed_case=c)
-    assert np.all(x.sel(source="this model") < x.sel(source="SKF 2004"))
+    below = x.sel(source="this model") < x.sel(source="SKF 2004")
+    assert bool((falls & below).where(full_film, True).all())

@@ -21,9 +21,13 @@ from tests.robustness.common import FAST, REPO, assert_refused, run
     (["bearing.aPk=9"], ["bearing.aPk = 9.0 is impossible", "Lwe = 17.0, aP = 8.5"], None),
     (["load.Fa=-5", "bearing.kappa=2"], ["load.Fa = -5 is outside", "bearing.kappa = 2 is outside"], None),
     (["bearing=trb_32208", "bearing.roller_end_radius_ratio=0.2"], ["bearing.roller_end_radius_ratio = 0.2"], None),
+    # at 1 the end sphere is centred on the bearing axis and conforms to the cone rib along e_t
+    (["bearing=trb_32208", "bearing.roller_end_radius_ratio=1.0"], ["bearing.roller_end_radius_ratio = 1.0", "(0.3, 1)"],
+     None),
     (["material.nu=0.7"], ["material.nu = 0.7"], None),
     (["+bearing.kapa=0.9"], ["bearing.kapa is not a config key (did you mean bearing.kappa?)"], None),
-], ids=["Z_200", "PCR_1e30", "R_33", "aPk_9", "two_bad_values", "trb_end_radius", "nu", "unknown_key"])
+], ids=["Z_200", "PCR_1e30", "R_33", "aPk_9", "two_bad_values", "trb_end_radius", "trb_end_sphere_conforms", "nu",
+         "unknown_key"])
 def test_single_run_refuses_in_one_line_and_makes_no_folder(tmp_path, overrides, fragments, not_blamed):
     run_dir = tmp_path / "run"
     out = run(["-m", "sim.run", *overrides, *FAST, f"hydra.run.dir={run_dir}", "output.cache_dir=null"], tmp_path)
