@@ -285,13 +285,16 @@ def coupled_solution(model, friction, op):
     ``roller_loads``, ``ring_loads``) enter :meth:`sim.api.bearing_model.BearingModel.solve`, whose
     solution gives the next friction loads g(x) of the applied ones x; iterated until they change
     by less than ``friction.load_coupling_tolerance`` x the largest roller load (the moments over
-    Lwe) between passes, at most ``friction.load_coupling_passes`` passes. From the second pass
-    on the next applied loads are Anderson-mixed (depth 1, the secant method on the fixed point:
-    Anderson 1965, J. ACM 12, 547; Walker & Ni 2011, SIAM J. Numer. Anal. 49, 1715):
-    x' = g_k - theta (g_k - g_(k-1)), theta = f_k.(f_k - f_(k-1)) / |f_k - f_(k-1)|^2, f = g(x) - x.
+    Lwe) between passes, at most ``friction.load_coupling_passes`` passes. The next applied loads
+    are Anderson-mixed (depth 1, the secant method on the fixed point: Anderson 1965, J. ACM 12,
+    547; Walker & Ni 2011, SIAM J. Numer. Anal. 49, 1715):
+    x' = g_k - theta (g_k - g_(k-1)), theta = f_k.(f_k - f_(k-1)) / |f_k - f_(k-1)|^2, f = g(x) - x,
+    from the first pass on, whose predecessor is the first solve (applied loads x = 0, f = g).
     Measured: the plain iteration contracts by 0.07-0.1 per pass on the skewed cases of the tests
     and by -0.5 (alternating) on a TRB 32208 under an imposed tilt with skew, which it did not
-    settle in 8 passes; the mixing settles both in 3-4.
+    settle in 8 passes; mixing from the second pass settled both in 3-4, from the first the combined
+    TRB 32208 and the pinion TSRB in 2 instead of 3 (bench_skew_cost.py), the tilted TRB 32208 in
+    4-5 as before.
 
     Returns (raw, fr): the last solve and the friction evaluation at it, with
     ``fr["coupling_converged"]`` whether the fixed point settled (it may not: a skewed TSRB whose
@@ -311,7 +314,8 @@ def coupled_solution(model, friction, op):
         return np.hstack([res["roller_loads"], res["ring_loads"]])
 
     x = loads(fr)               # the next applied loads (Z, NFL)
-    previous = None             # (g, f) of the previous pass
+    # (g, f) of the previous pass: the first solve is the pass with applied loads 0, g = x
+    previous = (x, x * scale)
     if not fr["friction_converged"]:
         return raw, fr | {"coupling_converged": False}
     for _ in range(friction.load_coupling_passes):
@@ -325,12 +329,9 @@ def coupled_solution(model, friction, op):
         f = (g - x) * scale
         if np.abs(f).max() <= friction.load_coupling_tolerance * raw["Q"].max():
             return raw, fr | {"coupling_converged": True}
-        if previous is None:
-            x = g
-        else:
-            df = f - previous[1]
-            dd = float(np.sum(df * df))
-            theta = float(np.sum(f * df)) / dd if dd > 0.0 else 0.0
-            x = g - theta * (g - previous[0])
+        df = f - previous[1]
+        dd = float(np.sum(df * df))
+        theta = float(np.sum(f * df)) / dd if dd > 0.0 else 0.0
+        x = g - theta * (g - previous[0])
         previous = (g, f)
     return raw, fr | {"coupling_converged": False}
