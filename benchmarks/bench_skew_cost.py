@@ -23,13 +23,21 @@ Run from the repository root::
 Exit code 0 when every solve converged, 1 otherwise. Pin it to one core on a shared machine
 (``taskset -c 1``); the thread variables are set to 1 here.
 
-Measured (2026-11-27, commit 9153499, the shared 2-core machine pinned to one core, load average
-0.1-1.4, 7 repeats; ms, skew / no skew): tsrb_reference combined 8.32 / 14.14 (1.70x, 3 passes),
-trb_32208 combined 6.30 / 16.70 (2.65x, 3 passes), tsrb_pinion 2.06 / 3.27 (1.59x, 3 passes),
-trb_31313 1.67 / 3.02 (1.80x, 2 passes). Where the skewed time went (trb_32208): first load solve 2.0
-ms, first evaluation 6.3 ms (film at rolling kinematics + seed solve 3.3 ms, film at its speeds + the
-final solve 3.0 ms: 8 evaluations of all rollers at 0.43 ms each, 0.25 ms without skew, both width
-halves), then per coupling pass a load solve 0.6-0.8 ms, film 0.23 ms and 3-4 all-roller evaluations.
+Measured (2026-11-27, the shared 2-core machine pinned to one core, load average 1.0, 15 repeats,
+two alternating runs of each commit; CPU ms no skew / skew, ratio, coupling passes):
+
+    case                      9153499 (before)              4c084df (after)
+    tsrb_reference combined   7.54 / 13.40  1.78x  3        7.56 /  9.88  1.31x  2
+    trb_32208 combined        5.86 / 15.12  2.58x  3        5.89 / 11.06  1.88x  2
+    tsrb_pinion 35 kN         1.87 /  2.98  1.60x  3        1.90 /  2.79  1.47x  3
+    trb_31313 35 kN           1.42 /  2.78  1.96x  2        1.43 /  2.64  1.85x  2
+
+Where the skewed time went before (trb_32208): first load solve 2.0 ms, first friction evaluation
+6.2 ms (film at rolling kinematics and the seed solve, film at its speeds and the final solve: 8
+evaluations of all rollers at 0.43 ms each, 0.25 ms without skew, which integrates one width half),
+then per coupling pass a load solve of 0.5-0.8 ms and an evaluation of 1.3-1.8 ms (film 0.23 ms, 3-4
+all-roller evaluations). After: the coupling is Anderson-mixed from its first pass (one pass fewer
+on the combined cases) and the first evaluation stops at its seed solve (3.2 ms).
 """
 import argparse
 import os
