@@ -63,6 +63,10 @@ KinematicsSettings = namedtuple("KinematicsSettings", [
     "max_iter",     # int: bracket widenings, regula falsi or Newton steps before giving up
     "traction",     # bool: speeds from the traction balance; False: the given (rolling) speeds are kept
     "seed_factor",  # 1, tolerance factor of a solve that only sets the film of the next pass
+    "final",        # bool: the speeds are a result (the last film pass solved to FINAL_TOLERANCE_FACTOR x the
+                    # tolerances); False: an iterate of the friction-load coupling (sim.api.friction_model.
+                    # coupled_solution), whose speeds only set the next pass's film and start: one film pass,
+                    # solved to seed_factor x the tolerances
 ])
 
 # First bracket of a roller speed: +-10 % of the start value (rolling kinematics (2.22) or the
@@ -489,8 +493,9 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     only sets the film and the start of the second, so it stops at ``settings.seed_factor`` times
     the tolerances and starts with the presolve of :func:`solve_kinematics_newton`; else one
     pass from the given speeds (a previous solution). The last pass is solved to
-    FINAL_TOLERANCE_FACTOR times the tolerances. A Newton solve that fails is repeated from its
-    start by the bracketing :func:`solve_kinematics`. Without ``settings.traction`` the speeds
+    FINAL_TOLERANCE_FACTOR times the tolerances; without ``settings.final`` the first pass is the
+    only one, at ``settings.seed_factor`` times the tolerances (an iterate of the load coupling). A
+    Newton solve that fails is repeated from its start by the bracketing :func:`solve_kinematics`. Without ``settings.traction`` the speeds
     stay as given (with skew, each roller's skew is solved at them) and ``totals`` sums the
     weighted roller evaluations.
 
@@ -525,16 +530,17 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     if roller_loads.shape[1] != NFL:
         raise ValueError("roller_loads must have NFL columns (sim.physics.friction.FRICTION_LOADS)")
     active, weight = settings.active, settings.weight
-    passes = 2 if settings.traction and fresh else 1
+    passes = 2 if settings.traction and fresh and settings.final else 1
     converged = True
     loads_known = False     # roller_loads hold the friction loads at the solution
     ev = np.empty(NEV)
     for film_pass in range(passes):
         lubrication_state(wR, wc, wi, active, case)
         if settings.traction:
-            loose = settings.seed_factor if film_pass < passes - 1 else FINAL_TOLERANCE_FACTOR
+            final = settings.final and film_pass == passes - 1
+            loose = FINAL_TOLERANCE_FACTOR if final else settings.seed_factor
             pass_settings = KinematicsSettings(active, weight, loose * settings.tol_M, loose * settings.tol_T,
-                                               settings.max_iter, True, settings.seed_factor)
+                                               settings.max_iter, True, settings.seed_factor, final)
             start_c = wc
             start_R = wR.copy()
             start_p = psi.copy()
