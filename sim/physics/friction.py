@@ -566,7 +566,11 @@ def lubrication_state(wR, wc, wi, active, case):
             hrib = film_point(u, Qrib[j], R_t, R_m, par.eta0, par.alpha, Ep)   # entrainment along e_t
             Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
             npts = _width_points(prib, 0.0, par, quad, pts)
-            theta = _viscosity_factor_at(HeatedContact(prib, 0.0, hrib, Phirib, 0.0, a, v1, v2), par, quad, npts, pts)
+            # the surfaces slide along e_t through the ellipse's semi-axis along e_t, a_t = a sqrt(kappa)
+            # (area pi a_t a_m = pi a^2, a_t / a_m = kappa): the heat source's half-length
+            a_t = a * np.sqrt(brg.rib_end[5])
+            theta = _viscosity_factor_at(HeatedContact(prib, 0.0, hrib, Phirib, 0.0, a_t, v1, v2), par, quad, npts,
+                                         pts)
             film.prib[j] = prib
             film.hrib[j] = hrib
             film.Phirib[j] = Phirib
