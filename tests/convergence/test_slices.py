@@ -3,9 +3,10 @@
 import numpy as np
 import pytest
 
+from sim.api.bearing_model import MIN_SLICE_WIDTH_RATIO
 from sim.errors import InputError
 from sim.physics.contact import contact_modulus
-from sim.physics.elasticity import coupled_slice_loads, influence_matrix, loaded_lengths
+from sim.physics.elasticity import coupled_slice_loads, influence_matrix, loaded_lengths, self_deflection
 from sim.physics.halfspace import line_load_along_x, solve_contact_halfspace
 from tests.helpers import case
 
@@ -34,12 +35,56 @@ def _holes(q):
     return int(np.sum(~loaded[..., 1:-1] & loaded[..., :-2] & loaded[..., 2:]))
 
 
+def alternating_mode_compliance(width_ratio, n=400, E_star=1.0e5, R=5.0, q=500.0):
+    """Tangent compliance [mm^2/N] of the slice model's alternating mode (loads up and down on
+    neighbouring slices) at slice width over Hertz half-width ``width_ratio``, from the model's own
+    functions: a row of n equal slices of line load q, the tangent self term d u_self / dq
+    (self_deflection) plus the influence numbers (influence_matrix), Rayleigh quotient of
+    (-1)^k in the middle of the row (the ends' truncation decays as 1/k)."""
+    b = np.sqrt(4.0 * q * R / (np.pi * E_star))
+    w = width_ratio * b
+    x = (np.arange(n) - 0.5 * (n - 1)) * w
+    C = influence_matrix(x, w, E_star)
+    c_self = getattr(self_deflection, "py_func", self_deflection)(q, w, R, E_star)[1]
+    v = (-1.0) ** np.arange(n)
+    mid = slice(n // 4, 3 * n // 4)
+    return c_self + float((C @ v)[mid] @ v[mid]) / (n // 2)
+
+
+def test_the_alternating_mode_of_narrow_slices_loses_its_compliance_below_0_73():
+    """Closed form of MIN_SLICE_WIDTH_RATIO's reason: the alternating mode's compliance,
+    (8 / (pi^2 E*)) (I(beta) - beta I'(beta) / 2) - 0.4986 / E* with I(beta) = int_0^1
+    sqrt(1 - t^2) asinh(beta / t) dt, beta = w / (2 b), changes sign at w / b = 0.728 (scipy
+    quadrature here); the model's functions give the same root within 1 % (their 8-point
+    Gauss-Legendre remainder, the row of 400 slices), and the refusal bound lies above it."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+
+    def I(beta):
+        return quad(lambda t: np.sqrt(1.0 - t * t) * np.arcsinh(beta / t), 0.0, 1.0, limit=200)[0]
+
+    k = np.arange(1, 200001)
+    alternating = 2.0 * np.sum((-1.0) ** k * np.log((2 * k + 1) / (2 * k - 1))) / np.pi
+    assert alternating == pytest.approx(-0.4986, abs=1e-4)
+
+    def closed(r):
+        beta, h = 0.5 * r, 1e-6
+        dI = (I(beta * (1 + h)) - I(beta * (1 - h))) / (2.0 * beta * h)
+        return 8.0 / np.pi**2 * (I(beta) - 0.5 * beta * dI) + alternating
+
+    root = brentq(closed, 0.3, 1.5)
+    assert root == pytest.approx(0.728, abs=1e-3)
+    assert brentq(alternating_mode_compliance, 0.3, 1.5) == pytest.approx(root, rel=0.01)
+    assert alternating_mode_compliance(MIN_SLICE_WIDTH_RATIO) > 0.0 > alternating_mode_compliance(0.6)
+    assert MIN_SLICE_WIDTH_RATIO > root
+
+
 def test_slices_narrower_than_the_contact_are_refused(model_for):
-    """Below a slice width of the Hertz half-width the neighbours' line-load coupling outweighs a
-    slice's own compliance and the loads alternate between slices: TRB 32208 at 40 kN pure axial
-    with 140 slices (w / b = 0.4) left every other slice unloaded with pmax 3057 MPa against 2385.
-    The solve refuses it, naming solver.n_slices and the largest count for the case; at that count
-    the loads are smooth (no unloaded slice inside a contact) and pmax within 0.5 % of 40 slices'."""
+    """Below the bound the neighbours' line-load coupling outweighs a slice's own compliance and
+    the loads alternate between slices: TRB 32208 at 40 kN pure axial with 140 slices (w / b = 0.4)
+    left every other slice unloaded with pmax 3057 MPa against 2385. The solve refuses it, naming
+    solver.n_slices and the largest count for the case; at that count the loads are smooth (no
+    unloaded slice inside a contact) and pmax within 0.5 % of 40 slices'."""
     model, _ = model_for("bearing=trb_32208", "solver.n_slices=140")
     with pytest.raises(InputError, match=r"solver.n_slices = 140 is too many .* solver.n_slices <= (\d+)") as err:
         model.solve(case(40000.0))
