@@ -22,8 +22,8 @@ d. Traction coefficient against slide-to-roll ratio of the lubricant's traction 
    ``tests/data/traction_twin_disc_mineral_oil.yaml`` when it holds any.
 e. Sensitivity of the section a and b outputs to each ASSUMED friction parameter over its cited range.
 f. TRB 32208 and TRB 31313, pure axial at two loads each, over speed (500-4000 rpm) and FVA 3
-   temperature (40-70 degC) against SKF 2004: speed and viscosity exponents where both models are
-   rolling-dominated (checked), and where the rib friction makes them part.
+   temperature (40-70 degC) against SKF 2004: speed and viscosity exponents of the rolling moments
+   (checked at every case) and of the torques, where the rib and SKF's mixed-film sliding make them part.
 
 ``--quick`` runs a reduced set of loads (the test of this module uses it).
 """
