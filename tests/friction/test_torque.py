@@ -124,8 +124,8 @@ def test_drilling_is_the_largest_loss_of_the_prototype_and_sliding_the_smallest(
 def test_shear_heating_lowers_the_rib_friction_where_the_rib_heats():
     """The TRB's roller-end / rib contact slides at about 1 m/s per 1000 rpm. Its frictional heat
     warms the film and the film's viscosity falls, so the rib friction with shear heating is below
-    the isothermal one, the more the faster the rib slides: TRB 32208 at 40 kN, -8 % at 2000 rpm
-    and -22 % at 4000 rpm (asserted: a larger reduction at the higher speed, both below 1); TRB
+    the isothermal one, the more the faster the rib slides: TRB 32208 at 40 kN, -9 % at 2000 rpm
+    and -23 % at 4000 rpm (asserted: a larger reduction at the higher speed, both below 1); TRB
     31313 at 35 kN, 4000 rpm, where the rib carries 820 N per roller: -51 % (asserted: below 80 %).
     At 4.5 kN and 2000 rpm the TRB 32208's rib carries a tenth of the load and the heat is small
     (the rib friction changes by less than 15 %). The raceway rolling resistance, an inlet effect,
