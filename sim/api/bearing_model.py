@@ -9,7 +9,7 @@ import numpy as np
 
 from sim import io
 from sim.config_schema import LoadConfig, SolverConfig, check_node
-from sim.errors import InputError
+from sim.errors import InputError, ResolutionError
 from sim.geometry import Geometry
 from sim.physics import ratings
 from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii
@@ -42,7 +42,7 @@ CONTINUATION_FIRST_STEP = 0.25
 # alternating sum of the line-load influences) changes sign at w / b = 0.728
 # (tests/convergence/test_slices.py). Measured, TRB 32208 at 40 kN: pmax 2382-2387 MPa for w / b =
 # 1.37-0.75, 2643 at 0.53, every other slice unloaded at 0.40. Solutions with w below
-# MIN_SLICE_WIDTH_RATIO x the largest half-width are refused (InputError naming solver.n_slices and
+# MIN_SLICE_WIDTH_RATIO x the largest half-width are refused (ResolutionError naming solver.n_slices and
 # its largest value for the case); 0.8 keeps the mode's compliance at a quarter of its value at w = b.
 MIN_SLICE_WIDTH_RATIO = 0.8
 
@@ -213,7 +213,7 @@ class BearingModel:
         return np.where(q > 0.0, p0(np.maximum(q, 0.0), self.geometry.arrays["R_eq"][None, :, :], self.E_star), 0.0)
 
     def _check_slice_width(self, op, q, pressure):
-        """InputError when the slice width is below MIN_SLICE_WIDTH_RATIO x the largest Hertz
+        """ResolutionError when the slice width is below MIN_SLICE_WIDTH_RATIO x the largest Hertz
         half-width b = 2 q / (pi p0) of the solution (Johnson 1985, 4.45): the slice model does
         not hold there (module constant)."""
         loaded = pressure > 0.0
@@ -224,7 +224,7 @@ class BearingModel:
         w = self.bearing.w
         if w < MIN_SLICE_WIDTH_RATIO * b_max:
             n_max = int(g.Lwe / (MIN_SLICE_WIDTH_RATIO * b_max))
-            raise InputError(
+            raise ResolutionError(
                 f"solver.n_slices = {self.settings.n_slices} is too many for the load case Fa = {op.Fa:g} N, "
                 f"Fr = {op.Fr:g} N: the slice width {w:.3g} mm is below {MIN_SLICE_WIDTH_RATIO:g} x the largest Hertz "
                 f"half-width of the solution, {b_max:.3g} mm, where the slice model's line-load coupling of "

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from sim.api.bearing_model import MIN_SLICE_WIDTH_RATIO
-from sim.errors import InputError
+from sim.errors import ResolutionError
 from sim.physics.contact import contact_modulus
 from sim.physics.elasticity import coupled_slice_loads, influence_matrix, loaded_lengths, self_deflection
 from sim.physics.halfspace import line_load_along_x, solve_contact_halfspace
@@ -86,7 +86,7 @@ def test_slices_narrower_than_the_contact_are_refused(model_for):
     solver.n_slices and the largest count for the case; at that count the loads are smooth (no
     unloaded slice inside a contact) and pmax within 0.5 % of 40 slices'."""
     model, _ = model_for("bearing=trb_32208", "solver.n_slices=140")
-    with pytest.raises(InputError, match=r"solver.n_slices = 140 is too many .* solver.n_slices <= (\d+)") as err:
+    with pytest.raises(ResolutionError, match=r"solver.n_slices = 140 is too many .* solver.n_slices <= (\d+)") as err:
         model.solve(case(40000.0))
     n_max = int(str(err.value).rsplit("<= ", 1)[1])
     assert 20 < n_max < 140

@@ -69,6 +69,18 @@ def test_edge_stress_margin_has_the_sign_of_the_simulation_flag(PCR, flagged):
     assert (margin > 0.0) == bool(ds.edge_stress) == flagged
 
 
+def test_a_design_beyond_the_slice_resolution_is_recorded_as_failed_not_a_config_error():
+    """sim.api.bearing_model refuses a solution whose slices are narrower than 0.8 x its contact
+    (ResolutionError): that depends on the design's loads, so the search records the point as
+    failed, with the message naming solver.n_slices, and goes on, where an InputError (the same for
+    every point) stops it. The pinion template with 300 slices (0.08 mm) at the study's 35 kN."""
+    study = compose([]).study
+    cfg = design_config(simulation_config(study, study.bearing, ["solver.n_slices=300"]), {"PCR": 25.0})
+    ds, record = simulate_point(cfg, ("pmax",))
+    assert ds is None and record["status"] == "failed"
+    assert "solver.n_slices = 300 is too many" in record["message"] and "ResolutionError" in record["message"]
+
+
 @pytest.fixture(scope="module")
 def space():
     cfg = compose([])
