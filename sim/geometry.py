@@ -586,12 +586,12 @@ class Geometry:
         return (np.array([s["c_x"], 0.0, s["R_end"], s["n_x"], s["n_y"], s["Rx"]]),
                 np.array([s["R_end"], s["c_x"], s["Rx"], s["R_end"]]))
 
-    def _rib_circumferential_curvature(self, x_p, y_p, n_x, n_y, R_n):
-        """Relative curvature along e_t [1/mm] of a roller end touching the inner ring's rib at
-        the point (x_p, y_p) [mm] of the roller frame, with unit normal (n_x, n_y) into the rib and
-        the end's principal radius about the roller axis R_n [mm] (the distance along the normal
-        from the point to the roller axis: a surface of revolution about it), and the point's
-        radius X_r [mm] and normal's radial component n_r [1].
+    def _rib_circumferential_radius(self, x_p, y_p, n_x, n_y, R_n):
+        """Relative radius of curvature along e_t [mm] of a roller end touching the inner ring's rib
+        at the point (x_p, y_p) [mm] of the roller frame, with unit normal (n_x, n_y) into the rib
+        and the end's principal radius about the roller axis R_n [mm] (the distance along the
+        normal from the point to the roller axis: a surface of revolution about it); -inf where the
+        relative curvature is not positive.
 
         The rib is a surface of revolution about the bearing axis: along its parallel circle, e_t,
         its normal curvature is n_r / X_r (Meusnier's theorem), concave seen from the roller when
@@ -601,9 +601,10 @@ class Geometry:
         touch it off the meridian plane."""
         X_r = 0.5 * self.Dpw + x_p * np.sin(self.alpha) + y_p * np.cos(self.alpha)
         n_r = n_x * np.sin(self.alpha) + n_y * np.cos(self.alpha)
-        return 1.0 / R_n - n_r / X_r, X_r, n_r
+        k_t = 1.0 / R_n - n_r / X_r
+        return 1.0 / k_t if k_t > 0.0 else -np.inf
 
-    def _sphere_rib(self, ratio=None):
+    def _sphere_rib(self):
         """Sphere / cone-rib contact at the nominal pose (``roller_end = "sphere"``).
 
         The end sphere, radius R_end = roller_end_radius_ratio x (apex distance + Lwe/2), centred
@@ -611,24 +612,23 @@ class Geometry:
         rib_contact_height_ratio x Dwe above the inner raceway; the rib's generatrix there is
         tangent to the sphere (straight: relative radius R_end across e_t, in the meridian plane),
         and the rib is a cone about the bearing axis, so along e_t its concave circumferential
-        curvature is subtracted from the sphere's (:meth:`_rib_circumferential_curvature`). The
+        curvature is subtracted from the sphere's (:meth:`_rib_circumferential_radius`). The
         normal through the sphere centre meets the bearing axis near the apex, so the rib's
         circumferential radius is close to the apex distance and the end conforms to the rib
         along e_t by about roller_end_radius_ratio: R_t ~ R_end / (1 - ratio), a contact ellipse
         elongated along e_t. At ratio 1 the sphere is centred on the apex, on the bearing axis, where
         the rib's normal meets it too: it conforms to the rib along e_t (Rx = inf, the schema's open
-        bound). ``ratio`` replaces roller_end_radius_ratio.
+        bound).
         """
         half = 0.5 * self.Lwe
-        R_end = (self.roller_end_radius_ratio if ratio is None else ratio) * (self.apex_distance + half)
+        R_end = self.roller_end_radius_ratio * (self.apex_distance + half)
         rho_large = float(self.roller_radius(half * (1 - 1e-9)))
         y_c = -(rho_large - self.rib_contact_height_ratio * self.Dwe)
         c_x = half - R_end
         x_c = c_x + np.sqrt(R_end**2 - y_c**2)
         n_x, n_y = (x_c - c_x) / R_end, y_c / R_end
-        k_t, X_r, n_r = self._rib_circumferential_curvature(x_c, y_c, n_x, n_y, R_end)
-        return {"c_x": c_x, "R_end": R_end, "n_x": n_x, "n_y": n_y, "X_r": X_r, "n_r": n_r,
-                "Rx": 1.0 / k_t if k_t > 0.0 else -np.inf}
+        return {"c_x": c_x, "R_end": R_end, "n_x": n_x, "n_y": n_y,
+                "Rx": self._rib_circumferential_radius(x_c, y_c, n_x, n_y, R_end)}
 
     def _torus_rim(self, r_k):
         """Rim radius a [mm] of a flat end face with edge radius r_k [mm]: the distance from the
@@ -661,9 +661,8 @@ class Geometry:
         n_x, n_y = np.cos(opening), -np.sin(opening)
         x_p, y_p = c_x + r_k * n_x, -a + r_k * n_y
         R_n = r_k + a / np.sin(opening)
-        k_t, X_r, n_r = self._rib_circumferential_curvature(x_p, y_p, n_x, n_y, R_n)
         return {"c_x": c_x, "a": a, "n_x": n_x, "n_y": n_y, "R_n": R_n, "x_n": c_x - a * n_x / np.sin(opening),
-                "X_r": X_r, "n_r": n_r, "Rx": 1.0 / k_t if k_t > 0.0 else -np.inf}
+                "Rx": self._rib_circumferential_radius(x_p, y_p, n_x, n_y, R_n)}
 
     def _torus_opening_limit(self):
         """Smallest rib opening angle [rad] at which the torus touches the cone rib at one edge

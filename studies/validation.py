@@ -449,9 +449,8 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
     fit = (np.array(speeds) >= SPEED_FIT_RANGE[0]) & (np.array(speeds) <= SPEED_FIT_RANGE[1])
     nu = np.array([reference_inputs(temperature=T)["nu"] for T in temps])
     put("kinematic_viscosity", "temperature_sweep", nu, "mm^2/s", "kinematic viscosity of FVA 3")
-    for name, what in (("torque", "torque"), ("rolling_torque", "rolling moment")):
-        M = ds[f"{name}_speed"].values
-        prefix = "" if name == "torque" else "rolling_"
+    for prefix, what in (("", "torque"), ("rolling_", "rolling moment")):
+        M = ds[f"{prefix}torque_speed"].values
         put(f"{prefix}speed_exponent", ("speed_case", "temperature_sweep", "source"),
             [[[_exponent_or_nan(np.array(speeds)[fit], M[c, t, fit, k]) for k in range(2)]
               for t in range(len(temps))] for c in range(len(f))], "1",

@@ -12,7 +12,7 @@ from sim.config_schema import LoadConfig, SolverConfig, check_node
 from sim.errors import InputError, ResolutionError
 from sim.geometry import Geometry
 from sim.physics import ratings
-from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii
+from sim.physics.contact import contact_modulus, hertz_line_half_width, hertz_line_pressure, hertz_point_radii
 from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_interference, influence_matrix,
                                    loaded_lengths)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
@@ -212,18 +212,15 @@ class BearingModel:
         p0 = getattr(hertz_line_pressure, "py_func", hertz_line_pressure)
         return np.where(q > 0.0, p0(np.maximum(q, 0.0), self.geometry.arrays["R_eq"][None, :, :], self.E_star), 0.0)
 
-    def _check_slice_width(self, op, q, pressure):
+    def _check_slice_width(self, op, q):
         """ResolutionError when the slice width is below MIN_SLICE_WIDTH_RATIO x the largest Hertz
-        half-width b = 2 q / (pi p0) of the solution (Johnson 1985, 4.45): the slice model does
-        not hold there (module constant)."""
-        loaded = pressure > 0.0
-        if not loaded.any():
-            return
-        b_max = float((2.0 * q[loaded] / (np.pi * pressure[loaded])).max())
-        g = self.geometry
+        half-width of the solution's line loads q (Z, 2, N) [N/mm] (Johnson 1985, 4.43): the slice
+        model does not hold there (module constant)."""
+        b = getattr(hertz_line_half_width, "py_func", hertz_line_half_width)      # numpy, as hertz_pressure
+        b_max = float(b(np.maximum(q, 0.0), self.geometry.arrays["R_eq"][None, :, :], self.E_star).max())
         w = self.bearing.w
         if w < MIN_SLICE_WIDTH_RATIO * b_max:
-            n_max = int(g.Lwe / (MIN_SLICE_WIDTH_RATIO * b_max))
+            n_max = int(self.geometry.Lwe / (MIN_SLICE_WIDTH_RATIO * b_max))
             raise ResolutionError(
                 f"solver.n_slices = {self.settings.n_slices} is too many for the load case Fa = {op.Fa:g} N, "
                 f"Fr = {op.Fr:g} N: the slice width {w:.3g} mm is below {MIN_SLICE_WIDTH_RATIO:g} x the largest Hertz "
@@ -374,7 +371,7 @@ class BearingModel:
         wall_time_s = time.perf_counter() - t0
         pressure = self.hertz_pressure(q)
         if converged:
-            self._check_slice_width(op, q, pressure)
+            self._check_slice_width(op, q)
         last = reports[-1]
         solver_info = dict(roller_iterations=int(totals[0]), contact_evaluations=int(totals[1]),
                            ring_backtracks=int(totals[2]), continuation_steps=steps,
