@@ -13,13 +13,6 @@ class GeometryError(ValueError):
     """Impossible bearing geometry; the message names the parameter, its value and the bound."""
 
 
-class ResolutionError(ValueError):
-    """A solver resolution that does not hold for this case (it depends on the solution, so it is
-    found after the solve, and may hold for other cases of the same config); the message names the
-    setting, its value and the largest value allowed for the case. Not an InputError: a design
-    search records the point as failed and goes on (``studies.evaluate.simulate_point``)."""
-
-
 class ConfigError(InputError):
     """Config values outside their schema (:mod:`sim.config_schema`); the message names each key,
     value and allowed range, one per line. An InputError: callers that treat bad input as a

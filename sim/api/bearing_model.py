@@ -9,10 +9,10 @@ import numpy as np
 
 from sim import io
 from sim.config_schema import LoadConfig, SolverConfig, check_node
-from sim.errors import InputError, ResolutionError
+from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
-from sim.physics.contact import contact_modulus, hertz_line_half_width, hertz_line_pressure, hertz_point_radii
+from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii
 from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_interference, influence_matrix,
                                    loaded_lengths)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
@@ -32,19 +32,6 @@ APPROACH_LOG_TERM = 8.0
 # load parameter lam in [0, 1]; an accepted increment doubles, a failed one halves, down to
 # 1 / continuation_steps, and at most 2 x continuation_steps solves.
 CONTINUATION_FIRST_STEP = 0.25
-# Validity of the slice model (BearingModel.solve): each slice is a Hertz line contact whose
-# pressure spreads across its half-width b (its own deflection, sim.physics.elasticity.
-# self_deflection), while its neighbours act on it as line loads one slice width w and more away
-# (influence_matrix). For narrow slices that coupling outweighs a slice's own tangent compliance
-# in the alternating mode (neighbouring slices loaded in turn), the slice problem loses its
-# uniqueness and the loads alternate: for a uniform contact the mode's compliance
-# (8 / (pi^2 E*)) (I - beta I' / 2) - 0.4986 / E* (beta = w / (2 b); the second term the
-# alternating sum of the line-load influences) changes sign at w / b = 0.728
-# (tests/convergence/test_slices.py). Measured, TRB 32208 at 40 kN: pmax 2382-2387 MPa for w / b =
-# 1.37-0.75, 2643 at 0.53, every other slice unloaded at 0.40. Solutions with w below
-# MIN_SLICE_WIDTH_RATIO x the largest half-width are refused (ResolutionError naming solver.n_slices and
-# its largest value for the case); 0.8 keeps the mode's compliance at a quarter of its value at w = b.
-MIN_SLICE_WIDTH_RATIO = 0.8
 
 #: Keys of one load case in the config and the Dataset (DATA.md case coordinates), in the order
 #: of OperatingPoint's fields.
@@ -212,22 +199,6 @@ class BearingModel:
         p0 = getattr(hertz_line_pressure, "py_func", hertz_line_pressure)
         return np.where(q > 0.0, p0(np.maximum(q, 0.0), self.geometry.arrays["R_eq"][None, :, :], self.E_star), 0.0)
 
-    def _check_slice_width(self, op, q):
-        """ResolutionError when the slice width is below MIN_SLICE_WIDTH_RATIO x the largest Hertz
-        half-width of the solution's line loads q (Z, 2, N) [N/mm] (Johnson 1985, 4.43): the slice
-        model does not hold there (module constant)."""
-        b = getattr(hertz_line_half_width, "py_func", hertz_line_half_width)      # numpy, as hertz_pressure
-        b_max = float(b(np.maximum(q, 0.0), self.geometry.arrays["R_eq"][None, :, :], self.E_star).max())
-        w = self.bearing.w
-        if w < MIN_SLICE_WIDTH_RATIO * b_max:
-            n_max = int(self.geometry.Lwe / (MIN_SLICE_WIDTH_RATIO * b_max))
-            raise ResolutionError(
-                f"solver.n_slices = {self.settings.n_slices} is too many for the load case Fa = {op.Fa:g} N, "
-                f"Fr = {op.Fr:g} N: the slice width {w:.3g} mm is below {MIN_SLICE_WIDTH_RATIO:g} x the largest Hertz "
-                f"half-width of the solution, {b_max:.3g} mm, where the slice model's line-load coupling of "
-                f"neighbouring slices does not hold (the loads alternate between slices); allowed here: "
-                f"solver.n_slices <= {n_max}")
-
     def initial_ring(self, op: OperatingPoint):
         """Start value of the inner-ring displacement (delta_a, delta_r) [mm]: the line-contact
         approach of an equal share of max(Fa, Fr) along the roller axis normal (APPROACH_LOG_TERM)."""
@@ -370,8 +341,6 @@ class BearingModel:
                 ext[:] = ext_case
         wall_time_s = time.perf_counter() - t0
         pressure = self.hertz_pressure(q)
-        if converged:
-            self._check_slice_width(op, q)
         last = reports[-1]
         solver_info = dict(roller_iterations=int(totals[0]), contact_evaluations=int(totals[1]),
                            ring_backtracks=int(totals[2]), continuation_steps=steps,

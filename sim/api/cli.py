@@ -9,11 +9,11 @@ per line) is joined with "; " into that one line.
 """
 import sys
 
-from sim.errors import GeometryError, InputError, ResolutionError
+from sim.errors import GeometryError, InputError
 
 #: the project's own errors: bad input, named by key, value and allowed range (ConfigError is an
-#: InputError), and a solver resolution that does not hold for a case
-PROJECT_ERRORS = (InputError, GeometryError, ResolutionError)
+#: InputError), and impossible geometry
+PROJECT_ERRORS = (InputError, GeometryError)
 #: exit status of a refused input
 REFUSED = 2
 

@@ -138,7 +138,6 @@ def test_claim_released_without_a_result_is_computed_here(cfg, counted, other):
 
 
 # ---------------------------------------------------------------------------- two real sweeps at once
-# light loads, so that 200 slices stay wider than the contacts (sim.api.bearing_model.MIN_SLICE_WIDTH_RATIO)
 SWEEP = ["bearing.PCR=90,100,110", "load.Fa=1000,2000", "load.Fr=[0,400,800,1200]"]
 SLOW = ["friction.enabled=false", "solver.n_slices=200"]   # 0.1-0.2 s a case: the two sweeps overlap
 

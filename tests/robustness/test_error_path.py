@@ -36,17 +36,6 @@ def test_single_run_refuses_in_one_line_and_makes_no_folder(tmp_path, overrides,
     assert not run_dir.exists()
 
 
-def test_slices_narrower_than_the_contact_refuse_the_run_after_the_solve(tmp_path):
-    """Found only after the solve (sim.api.bearing_model: slices narrower than 0.8 x the contact,
-    a ResolutionError): the same one line naming solver.n_slices and the largest count, exit 2,
-    and the run folder Hydra had made is removed. TRB 32208 at 40 kN with 140 slices."""
-    run_dir = tmp_path / "run"
-    out = run(["-m", "sim.run", "bearing=trb_32208", "load.Fa=40000", "load.Fr=0", "friction.enabled=false",
-               "solver.n_slices=140", f"hydra.run.dir={run_dir}", "output.cache_dir=null"], tmp_path)
-    assert_refused(out, "solver.n_slices = 140 is too many", "solver.n_slices <= ")
-    assert not run_dir.exists()
-
-
 def test_output_file_outside_the_run_folder_must_be_in_an_existing_folder(tmp_path):
     """``output.file=/nonexistent_dir/x.nc`` created /nonexistent_dir; now refused naming output.file."""
     absent = tmp_path / "nonexistent_dir" / "x.nc"

@@ -69,16 +69,33 @@ def test_edge_stress_margin_has_the_sign_of_the_simulation_flag(PCR, flagged):
     assert (margin > 0.0) == bool(ds.edge_stress) == flagged
 
 
-def test_a_design_beyond_the_slice_resolution_is_recorded_as_failed_not_a_config_error():
-    """sim.api.bearing_model refuses a solution whose slices are narrower than 0.8 x its contact
-    (ResolutionError): that depends on the design's loads, so the search records the point as
-    failed, with the message naming solver.n_slices, and goes on, where an InputError (the same for
-    every point) stops it. The pinion template with 300 slices (0.08 mm) at the study's 35 kN."""
+def test_a_numerical_failure_is_recorded_as_failed_and_an_input_error_stops_the_search(monkeypatch):
+    """simulate_point's error path: an exception of the simulation that is not an InputError (a
+    numerical failure that depends on the design) is a result of that point, recorded as failed with
+    its type and message, and the search goes on; an InputError (the same for every point) is a
+    configuration error and propagates. The simulation is replaced by one that raises, since no
+    shipped design fails numerically on purpose."""
+    import studies.evaluate as evaluate
+    from sim.errors import InputError
+
     study = compose([]).study
-    cfg = design_config(simulation_config(study, study.bearing, ["solver.n_slices=300"]), {"PCR": 25.0})
+    cfg = design_config(simulation_config(study, study.bearing), {"PCR": 25.0})
+
+    def diverges(cfg):
+        raise FloatingPointError("roller 3 did not converge")
+
+    monkeypatch.setattr(evaluate, "simulate", diverges)
     ds, record = simulate_point(cfg, ("pmax",))
     assert ds is None and record["status"] == "failed"
-    assert "solver.n_slices = 300 is too many" in record["message"] and "ResolutionError" in record["message"]
+    assert record["message"] == "FloatingPointError: roller 3 did not converge"
+    assert np.isnan(record["values"]["pmax"])
+
+    def refuses(cfg):
+        raise InputError("load.Fa = -1 is outside the allowed range [0, inf)")
+
+    monkeypatch.setattr(evaluate, "simulate", refuses)
+    with pytest.raises(InputError, match="load.Fa = -1"):
+        simulate_point(cfg, ("pmax",))
 
 
 @pytest.fixture(scope="module")
