@@ -15,7 +15,8 @@ refinement on the full simulation, the yardstick the search benchmark measures e
    ~0.03 % of its box, so most starts are infeasible points next to it), from the study's
    template design and, with ``--from-runs``, from the best design of every stored run of the
    search benchmark (the size_32208 landscape is rugged enough that one benchmark run found a
-   design 4.7 % below the best of 33 starts from the sample).
+   design 4.7 % below the best of 33 starts from the sample), and with ``--from-reference`` from
+   a stored reference optimum (after a physics change that moves it a little).
 3. Polish: COBYLA again from the best point with smaller first steps, while that improves it.
 4. The reference optimum is the best point of all by rank_key. It is reported with its active
    constraints and bounds and with the spread of the starts' ends: how many reached it within
@@ -40,6 +41,7 @@ import numpy as np
 import xarray as xr
 from omegaconf import OmegaConf
 
+from sim.errors import InputError
 from sim.io import utc_now, write_bytes_atomic, write_netcdf_atomic
 from studies.constraints import rank_key, violation
 from studies.evaluate import STATUS, design_matrix, table_to_file
@@ -120,6 +122,21 @@ def run_bests(folder, names):
             x = ds.design.sel(parameter=list(names)).values[i]
         out.append((f"best of {path.stem}", np.asarray(x, dtype=float)))
     return out
+
+
+def stored_optimum(path, search):
+    """The design of a stored reference optimum (this module's YAML, e.g. the previous one after a
+    physics change, whose optimum has moved only a little) as one (label, x) start; a file of another
+    study, or without a value for a free parameter, is refused naming the file and what differs."""
+    ref = OmegaConf.to_container(OmegaConf.load(path))
+    study = str(search.study.name)
+    if ref.get("study") != study:
+        raise InputError(f"--from-reference {path}: the optimum of study {ref.get('study')!r}, not of {study!r}")
+    missing = [n for n in search.space.names if n not in ref.get("design", {})]
+    if missing:
+        raise InputError(f"--from-reference {path}: no value for the free parameter(s) {missing}")
+    x = np.array([float(ref["design"][n]) for n in search.space.names])
+    return f"stored optimum of {Path(path).name} (commit {str(ref.get('git_commit', 'unknown'))[:7]})", x
 
 
 def run(search, n_sobol, seed, n_starts, max_per_start, log, extra_starts=()):
@@ -231,6 +248,10 @@ def main(argv=None):
                         help="also start from the best feasible design of every search-benchmark run in this "
                              "folder (outputs/benchmarks/design_search/<name>/): the reference is then the best "
                              "known design of the dense sample, the starts and every benchmarked method")
+    parser.add_argument("--from-reference", type=Path, default=None,
+                        help="also start from the design of this stored reference optimum (its YAML): after a "
+                             "physics change that moves the optimum a little, its old place is the start that "
+                             "finds it again")
     parser.add_argument("--out", default=None, help="result YAML (default outputs/studies/<name>/reference/"
                                                     "reference_optimum.yaml)")
     args = parser.parse_args(argv)
@@ -246,7 +267,9 @@ def main(argv=None):
     except STUDY_ERRORS as err:
         return refused(err)
     try:
-        extra = run_bests(args.from_runs, search.space.names) if args.from_runs is not None else ()
+        extra = run_bests(args.from_runs, search.space.names) if args.from_runs is not None else []
+        if args.from_reference is not None:
+            extra.append(stored_optimum(args.from_reference, search))
         result = run(search, args.sobol, args.seed, args.starts, args.max_per_start, log, extra)
     except STUDY_ERRORS as err:          # points.nc of another configuration
         return refused(err)
