@@ -41,7 +41,7 @@ import numpy as np
 import xarray as xr
 from omegaconf import OmegaConf
 
-from sim.errors import InputError
+from sim.api import InputError
 from sim.io import utc_now, write_bytes_atomic, write_netcdf_atomic
 from studies.constraints import rank_key, violation
 from studies.evaluate import STATUS, design_matrix, table_to_file

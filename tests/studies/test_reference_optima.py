@@ -114,3 +114,21 @@ def test_bad_reference_settings_are_refused_naming_the_flag(flag, value, capsys,
     err = capsys.readouterr().err
     assert flag in err and value in err and ">=" in err
     assert not (tmp_path / "outputs").exists()
+
+
+def test_a_stored_optimum_starts_a_rerun_and_another_studys_file_is_refused(tmp_path):
+    """``--from-reference`` (a rerun after a physics change starts from the old optimum as well): the
+    stored pinion design comes back in the search's parameter order; the pinion file offered to the
+    size_32208 study is refused naming the file and both studies, before anything runs."""
+    from sim.api import InputError
+    from studies.reference_optimum import stored_optimum
+
+    path = next(p for p in STORED if p.stem == "pinion")
+    ref = OmegaConf.to_container(OmegaConf.load(path))
+    pinion = DesignSearch(compose([]), [], out_dir=tmp_path / "p", log=lambda msg: None)
+    label, x = stored_optimum(path, pinion)
+    assert "pinion.yaml" in label and str(ref["git_commit"])[:7] in label
+    np.testing.assert_array_equal(x, [ref["design"][n] for n in pinion.space.names])
+    other = DesignSearch(compose(["study=size_32208"]), ["study=size_32208"], out_dir=tmp_path / "s", log=lambda msg: None)
+    with pytest.raises(InputError, match=r"--from-reference .*pinion.yaml: the optimum of study 'pinion', not of 'size_32208'"):
+        stored_optimum(path, other)
