@@ -333,10 +333,12 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol, free):
         # Newton on the active set; a slice whose Newton step crosses zero load is released
         J = np.empty((m, m))
         F = np.empty((m, 1))       # one column: the shape of the other sim._math.linalg.solve_dense call
+        tables_current = False     # rem, trem are those of the present q
         for it in range(NEWTON_MAX_ITER):
             total += 1
             fmax = 0.0
             _neighbour_tables(q, active, w, R, E_star, rem, trem)
+            tables_current = True
             for a in range(m):
                 k = idx[a]
                 s = 0.0
@@ -366,11 +368,14 @@ def coupled_slice_loads(d, C, w, R, E_star, q, active, tol, free):
                 break
             for a in range(m):
                 q[idx[a]] += dq[a, 0]
+            tables_current = False
         if changed:
             continue
         # add penetrating slices that the loaded slices' deflection does not open (all judged on the
-        # solved set, whose strip tables these are; then added together)
-        _neighbour_tables(q, active, w, R, E_star, rem, trem)
+        # solved set, whose strip tables these are; then added together). A converged Newton loop
+        # leaves the tables of its solution; only one that ran out of iterations moved q after them.
+        if not tables_current:
+            _neighbour_tables(q, active, w, R, E_star, rem, trem)
         for k in range(n):
             if not active[k]:
                 s = 0.0
