@@ -4,6 +4,7 @@ DATA.md outputs derived from it (PyBaMM-style: the model holds parameters, the s
 """
 import time
 from dataclasses import dataclass, fields
+from functools import partial
 
 import numpy as np
 
@@ -12,9 +13,9 @@ from sim.config_schema import LoadConfig, SolverConfig, check_node
 from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
-from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii
-from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_interference, influence_matrix,
-                                   loaded_lengths)
+from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii, slice_contact_meridian
+from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_interference, end_profile_drop,
+                                   influence_matrix, loaded_lengths)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.roller_contact import BearingArrays, empty_frames
 from sim.solvers.quasi_static import BodyLoads, NewtonSettings, QuasiStaticProblem, RollerSet, solve_bearing
@@ -32,6 +33,11 @@ APPROACH_LOG_TERM = 8.0
 # load parameter lam in [0, 1]; an accepted increment doubles, a failed one halves, down to
 # 1 / continuation_steps, and at most 2 x continuation_steps solves.
 CONTINUATION_FIRST_STEP = 0.25
+# The logarithmic crown (thesis eq. (2.5)) is infinite at the roller end itself: the unloaded gap of
+# the end-profile table (nominal_gap) is taken ROLLER_END_CLIP (relative) inside it, where it is
+# c Dwe ln(1 / (2 ROLLER_END_CLIP)) = 0.09 mm for a TRB 32208, far beyond any elastic approach here
+# (the same margin as the roller's mass integral in sim.geometry); numerical choice.
+ROLLER_END_CLIP = 1e-9
 
 #: Keys of one load case in the config and the Dataset (DATA.md case coordinates), in the order
 #: of OperatingPoint's fields.
@@ -94,6 +100,20 @@ class SolverSettings:
         return cls(**{name: kind(solver[name]) for name, kind in kinds.items()})
 
 
+def nominal_gap(geometry, kind, par, side, x):
+    """Unloaded rigid gap [mm] between the roller and one raceway at positions x along the roller
+    axis [mm] (array), the bearing at its nominal pose (the negative penetration of
+    sim.physics.contact.slice_contact_meridian; side +1 outer, -1 inner), within ROLLER_END_CLIP of
+    the roller ends."""
+    half = 0.5 * geometry.Lwe * (1.0 - ROLLER_END_CLIP)
+    x = np.clip(np.asarray(x, dtype=float), -half, half)
+    n = x.shape[0]
+    d = np.empty(n)
+    slice_contact_meridian(x, np.asarray(geometry.roller_radius(x), dtype=float), side, np.zeros(3), geometry.alpha,
+                           geometry.Dpw, (kind, par), (0.0, 0.0, 0.0), (d, np.empty((n, 2)), np.empty((n, 2))))
+    return -d
+
+
 class BearingModel:
     """Kernel inputs of one bearing, built once and reused for every load case."""
 
@@ -115,10 +135,14 @@ class BearingModel:
         rib = np.array(a["rib"], dtype=float)
         if g.type == "TRB":
             rib[5] = hertz_point_radii(rib[5], rib[2])[0]
-        self.bearing = BearingArrays(contiguous(a["x"], dtype=float), contiguous(a["rho"], dtype=float), float(a["w"]),
-                                     contiguous(a["race_kind"], dtype=np.int64), contiguous(a["race_par"], dtype=float),
+        x = contiguous(a["x"], dtype=float)
+        race_kind, race_par = contiguous(a["race_kind"], dtype=np.int64), contiguous(a["race_par"], dtype=float)
+        # the contact ends beyond the end slice centres follow the profile (elasticity.loaded_lengths)
+        end_drop = np.stack([end_profile_drop(x, partial(nominal_gap, g, race_kind[s], race_par[s], side), float(a["w"]))
+                             for s, side in enumerate((+1, -1))])
+        self.bearing = BearingArrays(x, contiguous(a["rho"], dtype=float), float(a["w"]), race_kind, race_par,
                                      contiguous(a["R_eq"], dtype=float), rib,
-                                     float(g.alpha), float(g.Dpw), float(g.Lwe), int(g.Z), g.type == "TRB")
+                                     float(g.alpha), float(g.Dpw), float(g.Lwe), int(g.Z), g.type == "TRB", end_drop)
         self.newton = NewtonSettings(float(s.tolerance), int(s.max_iterations), int(s.roller_max_iterations),
                                      float(s.roller_tolerance_ratio), float(s.forcing),
                                      float(s.roller_step_interference), float(s.roller_step_length),
@@ -388,14 +412,14 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     strips = np.zeros(n)
     length = np.zeros(2)
     for s in range(2):
-        loaded_lengths(np.ascontiguousarray(raw["free"][j, s]), p[j, s] > thr, w, strips)
+        loaded_lengths(np.ascontiguousarray(raw["free"][j, s]), p[j, s] > thr, w, model.bearing.end_drop[s], strips)
         length[s] = strips.sum()
     L_eff = float(length.min())
     # edge contact (2,) [1]: interference at the roller ends over the contact's largest elastic
     # approach, worst roller (sim.physics.elasticity.edge_interference); > 0: the contact runs
     # onto a roller end, whose sharp edge concentrates the pressure (edge stress)
     edge_int = np.empty(2)
-    edge_interference(np.ascontiguousarray(raw["free"]), p > thr, edge_int)
+    edge_interference(np.ascontiguousarray(raw["free"]), p > thr, model.bearing.end_drop, edge_int)
     C_eff = float(ratings.dynamic_load_rating(g.Dwe, g.Dpw, L_eff, g.Z, g.ratings_alpha, g.b_m)) if L_eff > 0 else 0.0
     res.update(
         pmax=p.max(axis=(0, 2)),

@@ -79,9 +79,10 @@ class FrictionModel:
         thermal conductivity [W/(m K)] and specific heat [J/(kg K)] of the steel.
     """
 
-    def __init__(self, geometry, E_star, lubricant, friction, surface, material):
+    def __init__(self, geometry, E_star, end_drop, lubricant, friction, surface, material):
         g = self.geometry = geometry
         self.E_star = E_star
+        self.end_drop = end_drop      # (2, 2, M) mm: the contact ends beyond the end slice centres (BearingArrays)
         self.lubricant = lubricant
         # every value below passed the schema (sim.config_schema) in sim.api.simulation
         film = str(friction["film_thickness"])
@@ -169,7 +170,7 @@ class FrictionModel:
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), rib_end=self.rib_end,
                                 nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe,
-                                free=raw["free"])
+                                free=raw["free"], end_drop=self.end_drop)
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
         psi = np.zeros(Z)               # roller skews [rad] (stay 0 without friction.skew)

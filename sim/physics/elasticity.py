@@ -66,6 +66,14 @@ NEWTON_MAX_ITER = 60
 # the error by ~10; the result only starts the Newton iteration.
 WIDE_STRIP_LOG_START = 6.0
 SELF_DEFLECTION_FIXED_POINT_ITER = 4
+# Points of an end strip's profile table (``end_drop`` of loaded_lengths, edge_interference): the
+# rigid gap's excess over its linear extrapolation from the two end slice centres, at
+# END_DROP_POINTS points equally spaced over the outer half of the end strip (the last at the roller
+# end). The contact end is then located between two table points by linear interpolation, to
+# |f''| (w / (2 M))^2 / 8 over the field's slope: for the logarithmic crown of a TRB 32208 with 20
+# slices, 0.4 % of w where the extrapolation alone erred by up to w / 2 (tests/convergence/
+# test_slices.py); numerical choice.
+END_DROP_POINTS = 8
 
 
 def influence_matrix(x, w, E_star):
@@ -400,7 +408,7 @@ def _signed_penetration(free, loaded, k):
 
 
 @kernel
-def loaded_lengths(free, loaded, w, out):
+def loaded_lengths(free, loaded, w, end_drop, out):
     """Loaded length of each slice strip [mm]: the contact ends placed between slice centres.
 
     The strip of slice k is [x_k - w/2, x_k + w/2] (centres w apart, the end strips reach the
@@ -408,10 +416,11 @@ def loaded_lengths(free, loaded, w, out):
     f_k = free_k on loaded slices (> 0), min(free_k, 0) on unloaded ones (the free penetrations of
     :func:`coupled_slice_loads`, the rigid penetrations of independent slices)
     between the slice centres is positive, and beyond the end centres its linear extrapolation from
-    the last two centres (:func:`_outer_half_strip`: a contact that ends inside an end strip is no
-    longer counted to the roller end; before session 14 the field was extended as a constant,
-    which read the TRB 32208's rolling loss at 40 kN 3 % high with 20 slices); ``out[k]`` is its
-    length inside strip k. A strip counts fully when it and its
+    the last two centres less the profile's own curvature there (:func:`_outer_half_strip`, the
+    table ``end_drop``: a logarithmic crown falls far faster towards the roller end than the line
+    through the end centres; session 14's linear extrapolation alone read the TRB 32208's loaded
+    length at 40 kN 2.9 % long with 20 slices, and before it the field was extended as a constant);
+    ``out[k]`` is its length inside strip k. A strip counts fully when it and its
     neighbours are loaded, and a contact end between a loaded slice k and an unloaded k + 1 lies
     at x_k + w f_k / (f_k - f_{k+1}): at the slice's own deflection against the gap the
     neighbours open. Where a slice enters or leaves contact (f_k -> 0) the end reaches its
@@ -420,7 +429,9 @@ def loaded_lengths(free, loaded, w, out):
     count times w whenever the end fields are equal and opposite (f_k = -f_{k+1}).
 
     free (N,): free penetrations [mm]; loaded (N,) bool: slices with load; w: slice width [mm];
-    out (N,): written [mm].
+    end_drop (2, M): the profile table of this contact's ends, end 0 beyond slice 0, end 1 beyond
+    slice N - 1 [mm] (:func:`end_profile_drop`; zeros: the plain linear extrapolation); out (N,):
+    written [mm].
     """
     n = free.shape[0]
     for k in range(n):
@@ -429,7 +440,7 @@ def loaded_lengths(free, loaded, w, out):
         return
     fprev = _signed_penetration(free, loaded, np.int64(0))   # not the literal 0: a second, Literal[int] copy
     if fprev > 0.0:
-        out[0] += _outer_half_strip(fprev, _signed_penetration(free, loaded, min(np.int64(1), n - 1)), w)
+        out[0] += _outer_half_strip(fprev, _signed_penetration(free, loaded, min(np.int64(1), n - 1)), end_drop[0], w)
     for k in range(n - 1):
         fnext = _signed_penetration(free, loaded, k + 1)
         if fprev > 0.0 and fnext > 0.0:
@@ -445,30 +456,48 @@ def loaded_lengths(free, loaded, w, out):
             out[k] += max(t - 0.5, 0.0) * w
         fprev = fnext
     if fprev > 0.0:
-        out[n - 1] += _outer_half_strip(fprev, _signed_penetration(free, loaded, max(n - 2, 0)), w)
+        out[n - 1] += _outer_half_strip(fprev, _signed_penetration(free, loaded, max(n - 2, 0)), end_drop[1], w)
 
 
 @internal_kernel
-def _outer_half_strip(f_end, f_next, w):
+def _outer_half_strip(f_end, f_next, drop, w):
     """Loaded length [mm] of the outer half of an end strip (from the end slice's centre to the roller
-    end) whose slice is loaded (f_end > 0): the signed field extrapolated linearly from the end centre
-    and its neighbour (f_next) towards the roller end, as :func:`_contact_edge_interference` does,
-    and the contact ends where it crosses zero, w f_end / (f_next - f_end) beyond the centre, or at
-    the roller end (w / 2) when it does not fall that far (edge contact, exactly when that
-    extrapolation to the roller end is > 0)."""
-    if f_next > f_end:
-        return min(f_end / (f_next - f_end), 0.5) * w
+    end) whose slice is loaded (f_end > 0).
+
+    The signed field beyond the end centre, t w away (0 < t <= 1/2), is the line through the end
+    centre and its neighbour (f_next), f_end + (f_end - f_next) t, less ``drop`` (M,): how much
+    further the rigid gap has opened there than that line says, at t = (i + 1) / (2 M). The rigid
+    penetration is the approach (linear in x for a rigid pose) less the profile's gap, and the
+    elastic part is smooth, so only the gap's curvature is missing from the line (a pose that
+    turns the profile by a small angle changes the table to second order). The contact ends at
+    the first table point where the field is <= 0, interpolated linearly from the point before,
+    or at the roller end (w / 2) when it stays positive (edge contact, exactly when
+    :func:`_contact_edge_interference` is > 0). With a zero table this is the linear
+    extrapolation of session 14, to rounding.
+    """
+    m = drop.shape[0]
+    slope = f_end - f_next
+    t_prev = 0.0
+    f_prev = f_end
+    for i in range(m):
+        t = 0.5 * (i + 1) / m
+        f = f_end + slope * t - drop[i]
+        if f <= 0.0:
+            return (t_prev + (t - t_prev) * f_prev / (f_prev - f)) * w
+        t_prev = t
+        f_prev = f
     return 0.5 * w
 
 
 @internal_kernel
-def _contact_edge_interference(free, loaded):
+def _contact_edge_interference(free, loaded, end_drop):
     """Interference of one contact at the roller ends, relative to its largest elastic approach [1].
 
     The signed field of :func:`loaded_lengths` (:func:`_signed_penetration`) is extrapolated
-    linearly from the two end centres to each roller end, half a slice beyond the end centre:
-    g_end = 1.5 g_0 - 0.5 g_1 (second order, like the contact ends between slice centres).
-    g_end > 0 means the contact runs onto the roller end: the elastic half-space solution of a
+    linearly from the two end centres to each roller end, half a slice beyond the end centre,
+    less the profile's gap there beyond that line (the last entry of the end's ``end_drop``
+    table, :func:`_outer_half_strip`): g_end = 1.5 g_0 - 0.5 g_1 - drop. g_end > 0 means the
+    contact runs onto the roller end: the elastic half-space solution of a
     contact truncated by a sharp edge has a pressure singularity there (like the rigid flat punch,
     p = P / (pi sqrt(a^2 - x^2)): Johnson 1985, Contact Mechanics, chapter 2), so the end slice's
     pressure is then a slice average of a peak that grows without bound as the slices are refined
@@ -479,11 +508,13 @@ def _contact_edge_interference(free, loaded):
     slices once they are narrower than the distance from the contact end to the roller end; its
     magnitude is a margin for the searches (the own deflections depend on the slice width).
 
-    free (N,): free penetrations [mm] (:func:`coupled_slice_loads`); loaded (N,) bool.
+    free (N,): free penetrations [mm] (:func:`coupled_slice_loads`); loaded (N,) bool; end_drop
+    (2, M): the profile table of both ends [mm] (:func:`loaded_lengths`).
     Returns max over both ends of min(g_end, g_0) / max(g) [1]; -inf for a contact without load
     (no interference anywhere).
     """
     n = free.shape[0]
+    m = end_drop.shape[1]
     gmax = 0.0
     for k in range(n):
         if loaded[k] and free[k] > gmax:
@@ -496,22 +527,43 @@ def _contact_edge_interference(free, loaded):
         k1 = min(1, n - 1) if end == 0 else max(n - 2, 0)
         g0 = _signed_penetration(free, loaded, k0)
         g1 = _signed_penetration(free, loaded, k1)
-        worst = max(worst, min(1.5 * g0 - 0.5 * g1, g0) / gmax)
+        worst = max(worst, min(1.5 * g0 - 0.5 * g1 - end_drop[end, m - 1], g0) / gmax)
     return worst
 
 
 @kernel
-def edge_interference(free, loaded, out):
+def edge_interference(free, loaded, end_drop, out):
     """Worst :func:`_contact_edge_interference` of each race over all rollers [1] (> 0: some roller's
     contact with that race runs onto a roller end).
 
-    free (Z, 2, N): free penetrations [mm]; loaded (Z, 2, N) bool; out (2,): written (-inf for a
-    race without a loaded contact).
+    free (Z, 2, N): free penetrations [mm]; loaded (Z, 2, N) bool; end_drop (2, 2, M): the profile
+    table of each race's ends [mm] (:func:`end_profile_drop`); out (2,): written (-inf for a race
+    without a loaded contact).
     """
     for s in range(2):
         out[s] = -np.inf
         for r in range(free.shape[0]):
-            out[s] = max(out[s], _contact_edge_interference(free[r, s], loaded[r, s]))
+            out[s] = max(out[s], _contact_edge_interference(free[r, s], loaded[r, s], end_drop[s]))
+
+
+def end_profile_drop(x, gap, w):
+    """The profile table of :func:`loaded_lengths` for one race [mm], (2, END_DROP_POINTS).
+
+    x (N,): slice centres [mm] (along the roller axis, uniform spacing w); gap: callable, the
+    unloaded rigid gap between roller and raceway at positions along the roller axis [mm] (array in,
+    array out; it may grow without bound at a roller end, like the logarithmic crown);
+    w: slice width [mm]. End 0 lies beyond slice 0, end 1 beyond slice N - 1; entry i at
+    (i + 1) / (2 M) of w beyond the end centre: the gap there less its linear extrapolation from
+    the end centre and its neighbour.
+    """
+    n = x.shape[0]
+    t = 0.5 * np.arange(1, END_DROP_POINTS + 1) / END_DROP_POINTS
+    table = np.empty((2, END_DROP_POINTS))
+    for end, (k0, k1) in enumerate(((0, min(1, n - 1)), (n - 1, max(n - 2, 0)))):
+        outward = np.sign(x[k0] - x[k1]) if n > 1 else 1.0
+        g0, g1 = gap(np.array([x[k0], x[k1]]))
+        table[end] = gap(x[k0] + outward * t * w) - (g0 + (g0 - g1) * t)
+    return table
 
 
 @internal_kernel

@@ -264,6 +264,7 @@ ContactLoads = namedtuple("ContactLoads", [
     "nrib",         # (Z, 2) unit rib normal (r, z) into the rib at the solution (TRB; zeros for a TSRB)
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
     "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.coupled_slice_loads)
+    "end_drop",     # (2, 2, M) the end-profile table of the contact ends (sim.physics.roller_contact.BearingArrays)
 ])
 
 # Film, load share, rolling resistance, Hertz data and film viscosity of every contact, written by
@@ -488,7 +489,7 @@ def lubrication_state(wR, wc, wi, active, case):
             for k in range(n):
                 loaded[k] = q[j, s, k] > 0.0
                 Qs += w * q[j, s, k]
-            loaded_lengths(brg.free[j, s], loaded, w, lengths)
+            loaded_lengths(brg.free[j, s], loaded, w, brg.end_drop[s], lengths)
             Ls = lengths.sum()
             q_mean = Qs / Ls if Ls > 0.0 else 0.0
             for k in range(n):

@@ -50,9 +50,11 @@ NY = 5  # generalised coordinates of a roller block: a (along u'), b (along v'),
 # [mm] (sim.geometry's relative radius along e_t made so by sim.api.bearing_model with
 # sim.physics.contact.hertz_point_radii; the circle's own radius for the sphere; zeros for a TSRB); alpha: roller-axis angle
 # [rad]; Dpw: pitch diameter [mm]; Lwe: roller length [mm]; Z: number of rollers; has_rib: the
-# inner ring guides the rollers by a rib (TRB).
+# inner ring guides the rollers by a rib (TRB); end_drop (2, 2, M): per race and roller end, the
+# unloaded gap's excess over its linear extrapolation from the end slice centres [mm]
+# (sim.physics.elasticity.end_profile_drop: the contact ends beyond the end centres).
 BearingArrays = namedtuple("BearingArrays", ["x", "rho", "w", "race_kind", "race_par", "R_eq", "rib", "alpha",
-                                             "Dpw", "Lwe", "Z", "has_rib"])
+                                             "Dpw", "Lwe", "Z", "has_rib", "end_drop"])
 
 # Contact frames of Z rollers with N slices per raceway (a numba-supported named tuple of arrays):
 # X, Nrm (Z, 2, N, 2): contact points [mm] and unit normals into the ring, (r, z), race 0 outer,

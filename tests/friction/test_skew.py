@@ -16,6 +16,7 @@ import sim
 from sim.api.cases import operating_points
 from sim.api.simulation import build_friction, build_model
 from sim.physics import friction as F
+from sim.physics.elasticity import END_DROP_POINTS
 from sim.solvers.kinematics import (FINAL_TOLERANCE_FACTOR, KinematicsSettings, empty_jacobian, solve_friction,
                                     solve_kinematics, solve_kinematics_newton)
 
@@ -169,7 +170,8 @@ def synthetic(crown=0.0, tilt_load=0.0):
     R_eq = np.array([np.full(N_SYN, 5.0 * R_o / (R_o - 5.0)), np.full(N_SYN, 5.0 * R_i / (R_i + 5.0))])
     bearing = F.ContactLoads(q=q, Qrib=np.zeros(1), R_eq=R_eq, w=X_SYN[1] - X_SYN[0], E_star=2.27e5,
                              rib_end=np.zeros(6), nrib=np.zeros((1, 2)), rho_m=5.0,
-                             free=np.full((1, 2, N_SYN), 1e-3))     # every slice loaded: full strips
+                             free=np.full((1, 2, N_SYN), 1e-3),     # every slice loaded: full strips
+                             end_drop=np.zeros((2, 2, END_DROP_POINTS)))  # a straight profile
     shape = (1, 2, N_SYN)
     film = F.FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (quad.wq.shape[0],)),
                        *(np.zeros(1) for _ in range(4)))

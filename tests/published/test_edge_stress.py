@@ -109,7 +109,7 @@ def test_slice_pmax_is_the_halfspace_peak_where_no_contact_reaches_a_roller_end(
     j = int(np.argmax(raw["Q"].sum(axis=1)))
     free = np.ascontiguousarray(raw["free"][j:j + 1])
     edge = np.empty(2)
-    edge_interference(free, raw["pressure"][j:j + 1] > 0.0, edge)
+    edge_interference(free, raw["pressure"][j:j + 1] > 0.0, model.bearing.end_drop, edge)
     assert edge[0] < 0.0                       # the contact ends inside the roller
     peak, x = halfspace_contact_peak(model, raw, j, 0, 1.0, 80, 40)
     assert peak == pytest.approx(raw["pressure"][j, 0].max(), rel=0.02)
