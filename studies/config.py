@@ -288,6 +288,8 @@ def validate(study):
              "an integer >= 1")
     _require(_is_number(rf.get("restart_shrink")) and 0.0 < rf["restart_shrink"] <= 1.0, "refine.restart_shrink",
              rf.get("restart_shrink"), "a number in (0, 1]")
+    _require(_is_number(rf.get("constraint_backoff")) and 0.0 <= rf["constraint_backoff"] < 0.1,
+             "refine.constraint_backoff", rf.get("constraint_backoff"), "a number in [0, 0.1) (normalised margin)")
     c = s.get("constraints", {})
     _require(_is_number(c.get("axial_displacement_max")) and c["axial_displacement_max"] > 0.0,
              "constraints.axial_displacement_max", c.get("axial_displacement_max"), "a number > 0 [mm]")

@@ -474,9 +474,11 @@ class DesignSearch:
                                  float(r.start_distance))
         self.log(f"local stage: {len(starts)} start(s), the verified best and the next best designs at least "
                  f"{float(r.start_distance):g} apart (unit scale)")
+        # the back-off tightens every constraint but the simulation's own margin (0 or 1: a result or none)
+        backoff = [0.0] + [float(r.constraint_backoff)] * (len(self.limits.names) - 1)
         self.local = local_refine(evaluate, starts, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
                                   float(r.active_tolerance), int(r.restarts), float(r.restart_shrink),
-                                  int(r.start_simulations))
+                                  int(r.start_simulations), backoff)
         # the first margin is the simulation's own (0 whenever it gave a result): no constraint to report
         self.local.active_constraints = [c for c in self.local.active_constraints if c != self.limits.names[0]]
         return xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")

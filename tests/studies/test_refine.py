@@ -132,3 +132,24 @@ def test_distinct_starts_keeps_the_best_of_each_neighbourhood():
     U = np.array([[0.5, 0.5], [0.52, 0.49], [0.7, 0.5], [0.51, 0.7], [0.9, 0.9]])
     chosen = distinct_starts(U, 3, 0.1)
     np.testing.assert_array_equal(np.array(chosen), U[[0, 2, 3]])
+
+
+def test_the_backoff_aims_each_run_inside_and_the_restarts_return_to_the_boundary():
+    """The circle problem above with a 'simulation' margin (0 for a result) and a back-off of 0.02
+    on the circle's margin only. Each COBYLA run solves margin + 0.02 x (its first step /
+    initial_step) <= 0, the points being judged by their true margins: one run alone ends inside
+    the circle (measured margin -0.006; its best truly feasible point, past the tightened
+    boundary); with 3 restarts (back-offs 0.004, 0.0008, 0.00016) the result is feasible and
+    within 2e-4 of the optimum f = -1 (measured 7e-5: the last back-off's cost, ~ its half, plus
+    COBYLA's 1e-4 on a curved boundary). Applied to the simulation margin the back-off would
+    leave no point feasible."""
+    def circle(u):
+        return -(u[0] + u[1]), np.array([0.0, (u[0] ** 2 + u[1] ** 2) / 0.5 - 1.0])
+
+    kw = dict(max_evaluations=200, initial_step=0.1, final_step=1e-6, active_tolerance=1e-4, restart_shrink=0.2,
+              backoff=[0.0, 0.02])
+    one = local_refine(circle, [0.1, 0.2], ["simulation", "circle"], restarts=0, **kw)
+    assert one.feasible and one.margins[1] < -1e-3
+    more = local_refine(circle, [0.1, 0.2], ["simulation", "circle"], restarts=3, **kw)
+    assert more.feasible and more.runs == 4
+    assert more.value == pytest.approx(-1.0, abs=2e-4) and more.value < one.value

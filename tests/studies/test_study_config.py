@@ -52,6 +52,7 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("refine.final_step", 0.5, ["study.refine.final_step", "0.5", "<= refine.initial_step"]),
     ("refine.restarts", -1, ["study.refine.restarts", "-1", ">= 0"]),
     ("refine.restart_shrink", 1.5, ["study.refine.restart_shrink", "1.5", "(0, 1]"]),
+    ("refine.constraint_backoff", -0.001, ["study.refine.constraint_backoff", "-0.001", "[0, 0.1)"]),
     ("refine.starts", 0, ["study.refine.starts", "0", ">= 1"]),
     ("refine.start_distance", 2.0, ["study.refine.start_distance", "2.0", "[0, 1]"]),
     ("refine.start_simulations", 0, ["study.refine.start_simulations", "0", ">= 1"]),
