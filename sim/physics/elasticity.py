@@ -70,9 +70,10 @@ SELF_DEFLECTION_FIXED_POINT_ITER = 4
 # rigid gap's excess over its linear extrapolation from the two end slice centres, at
 # END_DROP_POINTS points equally spaced over the outer half of the end strip (the last at the roller
 # end). The contact end is then located between two table points by linear interpolation, to
-# |f''| (w / (2 M))^2 / 8 over the field's slope: for the logarithmic crown of a TRB 32208 with 20
-# slices, 0.4 % of w where the extrapolation alone erred by up to w / 2 (tests/convergence/
-# test_slices.py); numerical choice.
+# |f''| (w / (2 M))^2 / 8 over the field's slope: for the logarithmic crown of a TRB 32208 (10-40
+# slices), 0.07-0.5 % of w, 2 % of w for an end 0.04 w from the roller end where the crown's
+# curvature is largest, where the straight extrapolation alone erred by up to 0.2 w
+# (tests/convergence/test_slices.py); numerical choice.
 END_DROP_POINTS = 8
 
 
