@@ -26,6 +26,13 @@ TSRB = 1
 TYPE_CODES = {"TRB": TRB, "TSRB": TSRB}  # kernel codes of the schema's bearing types (sim.config_schema.BEARING_TYPES)
 BEARING_KEYS = [f.name for f in fields(BearingConfig)]
 
+# The logarithmic crown (thesis eq. (2.5)) is infinite at the roller end itself: where the profile is
+# needed at the end (the roller end radius, the mass integral, the end-profile table of
+# sim.api.bearing_model) it is taken ROLLER_END_CLIP (relative to Lwe / 2) inside it, where the drop is
+# c Dwe ln(1 / (2 ROLLER_END_CLIP)) = 0.09 mm for a TRB 32208, far beyond any elastic approach here;
+# numerical choice.
+ROLLER_END_CLIP = 1e-9
+
 # Raceway profile kinds understood by sim.physics.contact.
 RACE_LINE = 0  # straight generatrix (cone): point and unit normal into the ring
 RACE_LENS = 1  # two circular arcs, each with its own radius, whose disks intersect (TSRB, "two intersected tori")
@@ -324,7 +331,7 @@ class Geometry:
                      "one point of its edge", "torus_rib_convex",
                      self._with("roller_end_edge_radius", "Dwe", "Lwe", "alpha", "Dpw"), float(np.degrees(limit)))
         else:
-            rho_large = float(self.roller_radius(half * (1 - 1e-9)))
+            rho_large = float(self.roller_radius(half * (1 - ROLLER_END_CLIP)))
             _require(self.rib_contact_height_ratio * self.Dwe < rho_large, "rib_contact_height_ratio",
                      self.rib_contact_height_ratio,
                      f"< {rho_large / self.Dwe:.4f}, the large-end radius over Dwe (the rib contact must lie on the "
@@ -533,7 +540,8 @@ class Geometry:
         }
         # roller mass and axial moment of inertia from the profile (solid of revolution)
         xs = np.linspace(-0.5 * self.Lwe, 0.5 * self.Lwe, 401)
-        rs = self.roller_radius(np.clip(xs, -0.5 * self.Lwe * (1 - 1e-9), 0.5 * self.Lwe * (1 - 1e-9)))
+        inside = 0.5 * self.Lwe * (1 - ROLLER_END_CLIP)
+        rs = self.roller_radius(np.clip(xs, -inside, inside))
         out["mass"] = self.density * np.trapezoid(np.pi * rs**2, xs)                 # t
         out["inertia_axial"] = self.density * np.trapezoid(0.5 * np.pi * rs**4, xs)  # t mm^2
         # about a transverse axis through the mid-length point (the roller centre of the kernels):
@@ -622,7 +630,7 @@ class Geometry:
         """
         half = 0.5 * self.Lwe
         R_end = self.roller_end_radius_ratio * (self.apex_distance + half)
-        rho_large = float(self.roller_radius(half * (1 - 1e-9)))
+        rho_large = float(self.roller_radius(half * (1 - ROLLER_END_CLIP)))
         y_c = -(rho_large - self.rib_contact_height_ratio * self.Dwe)
         c_x = half - R_end
         x_c = c_x + np.sqrt(R_end**2 - y_c**2)

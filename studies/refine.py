@@ -28,7 +28,8 @@ stage reported its start, 3.9 % above). So each run solves the constraints tight
 ``backoff`` (margin + backoff <= 0), scaled with the run's first step relative to
 ``initial_step``: the first run aims inside by the full back-off, each restart by less as its
 trust region shrinks, and every point is judged by its true margins. On that seed and three
-others the stage then ended 0.004-0.04 % above the reference optimum (README, design search II).
+others the stage then ended 0.004-0.04 % above the reference optimum (README, Search benchmark,
+"Session 15"; 10 of 10 pinion seeds within 0.1 %).
 
 One basin is not enough either: the size_32208 study has local optima 0.27 % and 3.2 % above its
 reference optimum (benchmarks/reference_optima), and the loop's verified best lay in the +3.2 %

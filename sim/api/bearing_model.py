@@ -11,7 +11,7 @@ import numpy as np
 from sim import io
 from sim.config_schema import LoadConfig, SolverConfig, check_node
 from sim.errors import InputError
-from sim.geometry import Geometry
+from sim.geometry import ROLLER_END_CLIP, Geometry
 from sim.physics import ratings
 from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii, slice_contact_meridian
 from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_interference, end_profile_drop,
@@ -33,11 +33,6 @@ APPROACH_LOG_TERM = 8.0
 # load parameter lam in [0, 1]; an accepted increment doubles, a failed one halves, down to
 # 1 / continuation_steps, and at most 2 x continuation_steps solves.
 CONTINUATION_FIRST_STEP = 0.25
-# The logarithmic crown (thesis eq. (2.5)) is infinite at the roller end itself: the unloaded gap of
-# the end-profile table (nominal_gap) is taken ROLLER_END_CLIP (relative) inside it, where it is
-# c Dwe ln(1 / (2 ROLLER_END_CLIP)) = 0.09 mm for a TRB 32208, far beyond any elastic approach here
-# (the same margin as the roller's mass integral in sim.geometry); numerical choice.
-ROLLER_END_CLIP = 1e-9
 
 #: Keys of one load case in the config and the Dataset (DATA.md case coordinates), in the order
 #: of OperatingPoint's fields.
@@ -103,8 +98,8 @@ class SolverSettings:
 def nominal_gap(geometry, kind, par, side, x):
     """Unloaded rigid gap [mm] between the roller and one raceway at positions x along the roller
     axis [mm] (array), the bearing at its nominal pose (the negative penetration of
-    sim.physics.contact.slice_contact_meridian; side +1 outer, -1 inner), within ROLLER_END_CLIP of
-    the roller ends."""
+    sim.physics.contact.slice_contact_meridian; side +1 outer, -1 inner), within
+    sim.geometry.ROLLER_END_CLIP of the roller ends."""
     half = 0.5 * geometry.Lwe * (1.0 - ROLLER_END_CLIP)
     x = np.clip(np.asarray(x, dtype=float), -half, half)
     n = x.shape[0]
@@ -138,8 +133,8 @@ class BearingModel:
         x = contiguous(a["x"], dtype=float)
         race_kind, race_par = contiguous(a["race_kind"], dtype=np.int64), contiguous(a["race_par"], dtype=float)
         # the contact ends beyond the end slice centres follow the profile (elasticity.loaded_lengths)
-        end_drop = np.stack([end_profile_drop(x, partial(nominal_gap, g, race_kind[s], race_par[s], side), float(a["w"]))
-                             for s, side in enumerate((+1, -1))])
+        end_drop = np.stack([end_profile_drop(x, partial(nominal_gap, g, race_kind[s], race_par[s], side),
+                                              float(a["w"])) for s, side in enumerate((+1, -1))])
         self.bearing = BearingArrays(x, contiguous(a["rho"], dtype=float), float(a["w"]), race_kind, race_par,
                                      contiguous(a["R_eq"], dtype=float), rib,
                                      float(g.alpha), float(g.Dpw), float(g.Lwe), int(g.Z), g.type == "TRB", end_drop)

@@ -65,8 +65,8 @@ def build_friction(cfg, model):
         return None
     if "surface" not in cfg["bearing"]:
         raise InputError("bearing.surface is missing (roughness sigma and Zhou-Hoeprich B_ZH, C_ZH, thesis (5.16))")
-    return FrictionModel(model.geometry, model.E_star, model.bearing.end_drop, Lubricant.from_config(cfg["lubricant"]), cfg["friction"],
-                         cfg["bearing"]["surface"], cfg["material"])
+    return FrictionModel(model.geometry, model.E_star, model.bearing.end_drop, Lubricant.from_config(cfg["lubricant"]),
+                         cfg["friction"], cfg["bearing"]["surface"], cfg["material"])
 
 
 def solve_case(model, friction, op, output_cfg):

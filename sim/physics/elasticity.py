@@ -550,7 +550,7 @@ def edge_interference(free, loaded, end_drop, out):
 def end_profile_drop(x, gap, w):
     """The profile table of :func:`loaded_lengths` for one race [mm], (2, END_DROP_POINTS).
 
-    x (N,): slice centres [mm] (along the roller axis, uniform spacing w); gap: callable, the
+    x (N >= 2,): slice centres [mm] (along the roller axis, uniform spacing w); gap: callable, the
     unloaded rigid gap between roller and raceway at positions along the roller axis [mm] (array in,
     array out; it may grow without bound at a roller end, like the logarithmic crown);
     w: slice width [mm]. End 0 lies beyond slice 0, end 1 beyond slice N - 1; entry i at
@@ -560,8 +560,8 @@ def end_profile_drop(x, gap, w):
     n = x.shape[0]
     t = 0.5 * np.arange(1, END_DROP_POINTS + 1) / END_DROP_POINTS
     table = np.empty((2, END_DROP_POINTS))
-    for end, (k0, k1) in enumerate(((0, min(1, n - 1)), (n - 1, max(n - 2, 0)))):
-        outward = np.sign(x[k0] - x[k1]) if n > 1 else 1.0
+    for end, (k0, k1) in enumerate(((0, 1), (n - 1, n - 2))):
+        outward = np.sign(x[k0] - x[k1])
         g0, g1 = gap(np.array([x[k0], x[k1]]))
         table[end] = gap(x[k0] + outward * t * w) - (g0 + (g0 - g1) * t)
     return table
