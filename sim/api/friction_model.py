@@ -303,7 +303,8 @@ def coupled_solution(model, friction, op):
     skew moment changes sign with the loads its own lateral tractions cause flips its rollers
     between the pocket walls from pass to pass). ``fr`` is None when the first solve did not
     converge; ``fr["friction_converged"]`` is False when a kinematic solve or a load solve with the
-    friction loads did not converge.
+    friction loads did not converge (a pass's kinematic solve starts from the previous pass's
+    speeds and Jacobian and, where that fails, once more from rolling kinematics).
     """
     raw = model.solve(op)
     if not raw["converged"]:
