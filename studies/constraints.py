@@ -37,6 +37,10 @@ from studies.evaluate import EDGE_MARGIN
 FAILED = 1.0  # margin of a point without results: one limit's worth of violation, so a sampler ranks it
 
 
+# name of the first margin: 0 when the simulation gave a result, FAILED when not (no physical constraint)
+SIMULATION_MARGIN = "simulation"
+
+
 @dataclass(frozen=True)
 class Limits:
     """Limits of the constraints over the study's duty cycle (studies.cycle; one case: its load case).
@@ -110,7 +114,7 @@ class Limits:
     @property
     def names(self):
         """Names of the margins returned by :func:`margins`, in order."""
-        return ("simulation", "axial_displacement", "pmax", "L10", *(("edge_stress",) if self.edge_stress else ()),
+        return (SIMULATION_MARGIN, "axial_displacement", "pmax", "L10", *(("edge_stress",) if self.edge_stress else ()),
                 "PCR_over_Lwe")
 
 

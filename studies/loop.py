@@ -40,7 +40,7 @@ from omegaconf import OmegaConf
 from sim.api import Geometry, GeometryError
 from sim.io import write_netcdf_atomic
 from studies.config import StudyConfigError, output_dir, simulation_config
-from studies.constraints import FAILED, Limits, exact_margin, margins, rank_key
+from studies.constraints import FAILED, SIMULATION_MARGIN, Limits, exact_margin, margins, rank_key
 from studies.cycle import DutyCycle, summary_values
 from studies.evaluate import (EDGE_MARGIN, RECORDED, STATUS, STATUS_NAMES, case_values, design_matrix, evaluate_design,
                               evaluate_designs, points_dataset, simulate_point, table_from_file, table_to_file,
@@ -475,12 +475,12 @@ class DesignSearch:
         self.log(f"local stage: {len(starts)} start(s), the verified best and the next best designs at least "
                  f"{float(r.start_distance):g} apart (unit scale)")
         # the back-off tightens every constraint but the simulation's own margin (0 or 1: a result or none)
-        backoff = [0.0] + [float(r.constraint_backoff)] * (len(self.limits.names) - 1)
+        backoff = [0.0 if n == SIMULATION_MARGIN else float(r.constraint_backoff) for n in self.limits.names]
         self.local = local_refine(evaluate, starts, self.limits.names, n_max, float(r.initial_step), float(r.final_step),
                                   float(r.active_tolerance), int(r.restarts), float(r.restart_shrink),
                                   int(r.start_simulations), backoff)
-        # the first margin is the simulation's own (0 whenever it gave a result): no constraint to report
-        self.local.active_constraints = [c for c in self.local.active_constraints if c != self.limits.names[0]]
+        # the simulation's own margin (0 whenever it gave a result) is no constraint to report
+        self.local.active_constraints = [c for c in self.local.active_constraints if c != SIMULATION_MARGIN]
         return xr.concat([ds, self._refined], dim="design", combine_attrs="override", data_vars="all")
 
     # ------------------------------------------------------------------ the loop
