@@ -259,6 +259,8 @@ class LubricantConfig:
     density_slope: Any = key(Number(-5.0, 0.0, units="kg/(m^3 K)"))
     pressure_viscosity: Any = key(Number(0.0, 0.05, units="1/MPa"),
                                   note="mineral and synthetic oils 0.01-0.035, traction fluids to about 0.04 1/MPa")
+    pressure_viscosity_temperature: Any = key(Number(-40.0, 200.0, units="degC"))
+    pressure_viscosity_temperature_law: str = key(Choice(("constant", "roelands")))
     pressure_viscosity_model: str = key(Choice(("barus", "roelands")))
     limiting_shear_coefficient: Any = key(Number(0.0, 0.5, low_open=True))
     limiting_shear_stress_0: Any = key(Number(0.0, 100.0, units="MPa"))

@@ -129,9 +129,9 @@ class FrictionModel:
         skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
         self.pocket_clearance = float(skew["pocket_clearance"])     # mm, the dynamic solver's pocket too
         self.pocket_stiffness = float(skew["pocket_stiffness"])     # N/mm per roller end
-        # the per-case fields (eta0, Z, beta, drag_k: oil temperature) are set by evaluate
+        # the per-case fields (eta0, alpha, Z, beta, drag_k: oil temperature) are set by evaluate
         self.par = FrictionParams(
-            eta0=np.nan, alpha=float(lubricant.pressure_viscosity), Z=np.nan,
+            eta0=np.nan, alpha=np.nan, Z=np.nan,
             pv_model=PRESSURE_VISCOSITY_MODELS[lubricant.pressure_viscosity_model], beta=np.nan,
             traction_law=TRACTION_LAWS[str(friction["traction_law"])],
             rheology=FilmRheology(tau_E0=float(lubricant.eyring_stress),
@@ -156,8 +156,9 @@ class FrictionModel:
         a = g.arrays
         Z, n = g.Z, g.n_slices
         eta0 = float(self.lubricant.dynamic_viscosity(op.oil_temperature)) * MPA_S_PER_PA_S
+        alpha = float(self.lubricant.pressure_viscosity_at(op.oil_temperature))
         par = self.par._replace(
-            eta0=eta0, Z=float(roelands_index(eta0, self.par.alpha)),
+            eta0=eta0, alpha=alpha, Z=float(roelands_index(eta0, alpha)),
             beta=float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature)),
             drag_k=self.drag_factor * float(self.lubricant.density(op.oil_temperature)))
         static = op.speed_rpm == 0.0

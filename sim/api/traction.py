@@ -89,9 +89,9 @@ def twin_disc_contact(cfg, p_h, u, R, temperature):
     q = np.pi * b * p_h / 2.0
     eta0 = float(lub.dynamic_viscosity(temperature)) * 1e-6       # Pa s -> MPa s
     u_mm = u * 1e3
-    h = ehl.film_line(u_mm, q, R, eta0, lub.pressure_viscosity, E_prime,
-                      ehl.FILM_FORMULAS[str(cfg.friction.film_thickness)])
-    return {"b": b, "q": q, "E_prime": E_prime, "eta0": eta0, "alpha_p": lub.pressure_viscosity, "h": h,
+    alpha_p = float(lub.pressure_viscosity_at(temperature))
+    h = ehl.film_line(u_mm, q, R, eta0, alpha_p, E_prime, ehl.FILM_FORMULAS[str(cfg.friction.film_thickness)])
+    return {"b": b, "q": q, "E_prime": E_prime, "eta0": eta0, "alpha_p": alpha_p, "h": h,
             "t_transit": 2.0 * b / u_mm, "lubricant": lub}
 
 
