@@ -10,11 +10,12 @@ from sim.api.traction import TRACTION_LAWS, bearing_model_traction_law, traction
 from sim.errors import ConfigError, GeometryError, InputError
 from sim.geometry import Geometry
 from sim.physics import ratings
-from sim.physics.lubricant import Lubricant
+from sim.physics.lubricant import Lubricant, pressure_viscosity_roelands
 from sim.physics.reference_models import (SKF_TAPERED_CONSTANTS, aihara_1987_trb, aihara_rolling_moment, skf_2004_trb,
                                           torque_exponent)
 
 __all__ = ["ConfigError", "Geometry", "GeometryError", "InputError", "Lubricant", "OperatingPoint",
            "SKF_TAPERED_CONSTANTS", "TRACTION_LAWS", "aihara_1987_trb", "aihara_rolling_moment",
-           "bearing_model_traction_law", "build_model", "operating_points", "ratings", "simulate", "simulate_batch", "skf_2004_trb",
+           "bearing_model_traction_law", "build_model", "operating_points", "pressure_viscosity_roelands", "ratings", "simulate",
+           "simulate_batch", "skf_2004_trb",
            "torque_exponent", "traction_curve", "twin_disc_contact", "worker_pool"]

@@ -1,43 +1,25 @@
 """The pressure-viscosity coefficient over temperature (sim.physics.lubricant, Roelands' constant
 pressure-viscosity index), against published mineral-oil data, and its place in the friction model."""
-import pathlib
-
 import numpy as np
 import pytest
-import yaml
 
 import sim
 from sim.physics.ehl import roelands_index
-from sim.physics.lubricant import MPA_S_PER_PA_S, Lubricant, pressure_viscosity_roelands
-
-DATA = pathlib.Path(__file__).resolve().parents[1] / "data" / "pressure_viscosity_temperature_mineral_oils.yaml"
-ANCHOR = 1   # the table's 60 degC column: alpha there predicts 30 and 100 degC
-
-
-def published_predictions():
-    """(measured, Roelands-predicted, constant) alpha [GPa^-1] at 30 and 100 degC of every oil of
-    Stachowiak & Batchelor's Table 2.3 from its 60 degC value."""
-    measured, roelands, constant = [], [], []
-    for oil in yaml.safe_load(DATA.read_text())["oils"]:
-        eta = np.asarray(oil["viscosity_mPa_s"], dtype=float) * 1e-3 * MPA_S_PER_PA_S   # mPa s -> MPa s
-        alpha = oil["pressure_viscosity_GPa-1"]
-        for i, a in enumerate(alpha):
-            if i == ANCHOR or a is None:
-                continue
-            measured.append(a)
-            roelands.append(pressure_viscosity_roelands(alpha[ANCHOR], eta[i], eta[ANCHOR]))
-            constant.append(alpha[ANCHOR])
-    return np.array(measured), np.array(roelands), np.array(constant)
+from sim.physics.lubricant import MPA_S_PER_PA_S, Lubricant
+from studies.validation import published_pressure_viscosity
 
 
 def test_roelands_index_predicts_the_published_fall_with_temperature():
-    """13 mineral oils (spindle to cylinder oils, 2.4-2000 mPa s) at 30 and 100 degC, predicted
-    from their 60 degC alpha with Z held (25 points). Tolerances: the table prints alpha to 2-3
+    """13 mineral oils (spindle to cylinder oils, 2.4-2000 mPa s; Stachowiak & Batchelor, Table 2.3,
+    tests/data/pressure_viscosity_temperature_mineral_oils.yaml) at 30 and 100 degC, predicted from
+    their 60 degC alpha with Z held (25 points; :func:`studies.validation.published_pressure_viscosity`,
+    the validation report's section g). Tolerances: the table prints alpha to 2-3
     digits (13 +- 0.5 is 4 %), does not say whether alpha is a secant or the initial slope, and
     the oils' own viscosities carry 2-3 digits; a median error of 5 % and none above 20 % is what
     such data can support. The data do discriminate: the constant alpha the model used before
     errs by a median of 24 % (and up to 49 %)."""
-    measured, roelands, constant = published_predictions()
+    pv = published_pressure_viscosity()
+    measured, roelands, constant = pv["measured"], pv["roelands"], pv["constant"]
     assert len(measured) == 25
     err = roelands / measured - 1.0
     assert np.median(np.abs(err)) < 0.05, np.round(err, 3)

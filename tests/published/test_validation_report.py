@@ -16,7 +16,7 @@ import xarray as xr
 from studies import validation
 
 FIGURES = ("trb_32208_torque_vs_Fa.png", "prototype_vs_trb.png", "torque_breakdown.png", "traction_curve.png",
-           "trb_torque_vs_speed.png")
+           "trb_torque_vs_speed.png", "pressure_viscosity_temperature.png")
 
 
 @pytest.fixture(scope="module")
@@ -44,7 +44,8 @@ def test_netcdf_holds_the_plotted_variables_with_units(report):
                "torque_aihara_rib", "torque_thesis", "band_low", "band_high", "torque_exponent", "torque_trb_rig",
                "torque_prototype_rig", "ratio_rig", "torque_trb_fig69", "torque_prototype_fig69", "ratio_fig69",
                "breakdown", "torque_case", "ratio_pinion", "traction_coefficient", "target_value", "target_pass",
-               "torque_speed", "rib_torque_speed", "skf_sliding_speed", "speed_exponent")
+               "torque_speed", "rib_torque_speed", "skf_sliding_speed", "speed_exponent", "pv_measured", "pv_roelands",
+               "pv_constant", "pressure_viscosity")
     for name in plotted:
         assert name in ds, name
     for name, var in {**ds.data_vars, **ds.coords}.items():
