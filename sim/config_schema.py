@@ -269,6 +269,7 @@ class LubricantConfig:
     eyring_stress: Any = key(Number(0.1, 100.0, units="MPa"),
                              note="lubricants' Eyring stresses are 1-20 MPa (Johnson & Tevaarwerk 1977; Evans & "
                                   "Johnson 1986)")
+    eyring_stress_temperature_law: str = key(Choice(("constant", "bair_winer")))
 
 
 @dataclass

@@ -129,12 +129,12 @@ class FrictionModel:
         skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
         self.pocket_clearance = float(skew["pocket_clearance"])     # mm, the dynamic solver's pocket too
         self.pocket_stiffness = float(skew["pocket_stiffness"])     # N/mm per roller end
-        # the per-case fields (eta0, alpha, Z, beta, drag_k: oil temperature) are set by evaluate
+        # the per-case fields (eta0, alpha, Z, rheology.tau_E0, beta, drag_k: oil temperature) are set by evaluate
         self.par = FrictionParams(
             eta0=np.nan, alpha=np.nan, Z=np.nan,
             pv_model=PRESSURE_VISCOSITY_MODELS[lubricant.pressure_viscosity_model], beta=np.nan,
             traction_law=TRACTION_LAWS[str(friction["traction_law"])],
-            rheology=FilmRheology(tau_E0=float(lubricant.eyring_stress),
+            rheology=FilmRheology(tau_E0=np.nan,
                                   tau_L0=float(lubricant.limiting_shear_stress_0),
                                   c_tau=float(lubricant.limiting_shear_coefficient), G=float(lubricant.shear_modulus)),
             solid=SolidFriction(mu_s=mu_s, v_s=v_s), hysteresis=hysteresis, mu_cage=mu_cage,
@@ -159,6 +159,7 @@ class FrictionModel:
         alpha = float(self.lubricant.pressure_viscosity_at(op.oil_temperature))
         par = self.par._replace(
             eta0=eta0, alpha=alpha, Z=float(roelands_index(eta0, alpha)),
+            rheology=self.par.rheology._replace(tau_E0=float(self.lubricant.eyring_stress_at(op.oil_temperature))),
             beta=float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature)),
             drag_k=self.drag_factor * float(self.lubricant.density(op.oil_temperature)))
         static = op.speed_rpm == 0.0

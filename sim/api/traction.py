@@ -132,7 +132,7 @@ def traction_curve(cfg, srr, *, p_h, u, R, temperature, law="traction_eyring", p
     z = ehl.roelands_index(c["eta0"], c["alpha_p"])
     solid = ehl.SolidFriction(mu_s=float(cfg.friction.solid_friction_coefficient),
                               v_s=float(cfg.friction.solid_slip_velocity) * 1e3)    # m/s -> mm/s
-    rheology = ehl.FilmRheology(tau_E0=float(lub.eyring_stress), tau_L0=float(lub.limiting_shear_stress_0),
+    rheology = ehl.FilmRheology(tau_E0=float(lub.eyring_stress_at(temperature)), tau_L0=float(lub.limiting_shear_stress_0),
                                 c_tau=float(lub.limiting_shear_coefficient), G=float(lub.shear_modulus))
     x, w = np.polynomial.legendre.leggauss(int(points))
     t = 0.25 * np.pi * (x + 1.0)                                       # (0, pi/2)

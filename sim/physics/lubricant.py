@@ -44,7 +44,8 @@ class Lubricant:
     elastic ``shear_modulus`` of the film [MPa] (Maxwell traction at low slip); the film's
     ``thermal_conductivity`` [W/(m K)] (shear heating, :mod:`sim.physics.friction`); the
     ``eyring_stress`` tau_E0 [MPa] of the Maxwell-Eyring traction law
-    (:func:`sim.physics.ehl.traction_eyring`).
+    (:func:`sim.physics.ehl.traction_eyring`) at ``pressure_viscosity_temperature``, and its
+    ``eyring_stress_temperature_law`` ('constant' or 'bair_winer', :meth:`eyring_stress_at`).
     """
 
     name: str
@@ -62,6 +63,7 @@ class Lubricant:
     shear_modulus: float
     thermal_conductivity: float
     eyring_stress: float
+    eyring_stress_temperature_law: str
 
     @classmethod
     def from_config(cls, lub):
@@ -99,7 +101,8 @@ class Lubricant:
                    float(lub["pressure_viscosity_temperature"]), str(lub["pressure_viscosity_temperature_law"]),
                    str(lub["pressure_viscosity_model"]),
                    float(lub["limiting_shear_stress_0"]), float(lub["limiting_shear_coefficient"]),
-                   float(lub["shear_modulus"]), float(lub["thermal_conductivity"]), float(lub["eyring_stress"]))
+                   float(lub["shear_modulus"]), float(lub["thermal_conductivity"]), float(lub["eyring_stress"]),
+                   str(lub["eyring_stress_temperature_law"]))
 
     def kinematic_viscosity(self, temperature):
         """nu [mm^2/s] at ``temperature`` [degC] (Ubbelohde-Walther, DIN 51563)."""
@@ -142,6 +145,18 @@ class Lubricant:
             eta_ref = self.dynamic_viscosity(self.pressure_viscosity_temperature) * MPA_S_PER_PA_S
             alpha = pressure_viscosity_roelands(alpha, eta, eta_ref)
         return alpha[()] if alpha.ndim == 0 else alpha
+
+    def eyring_stress_at(self, temperature):
+        """Eyring stress tau_E0 [MPa] at ``temperature`` [degC]: ``eyring_stress`` at every
+        temperature ('constant') or, with 'bair_winer', tau_E0 = 2 Lambda / alpha (Bair & Winer 1979;
+        Arana, Larranaga & Ulacia 2019, eqs. 12-13, from Eyring's theory: tau_E = k Theta / v_tau
+        and alpha = v_p / (k Theta), so tau_E = (v_p / v_tau) / alpha): ``eyring_stress`` at
+        ``pressure_viscosity_temperature``, elsewhere in proportion to 1 / :meth:`pressure_viscosity_at`.
+        """
+        tau = np.full(np.shape(temperature), self.eyring_stress)
+        if self.eyring_stress_temperature_law == "bair_winer":
+            tau = tau * self.pressure_viscosity / self.pressure_viscosity_at(temperature)
+        return tau[()] if tau.ndim == 0 else tau
 
 
 def pressure_viscosity_roelands(alpha_ref, eta, eta_ref):

@@ -49,6 +49,25 @@ def test_lubricant_keeps_its_alpha_at_the_anchor_and_its_roelands_index_everywhe
     np.testing.assert_array_equal(flat.pressure_viscosity_at(temperatures), lub.pressure_viscosity)
 
 
+@pytest.mark.parametrize("lubricant", ["fva3", "pinion_oil"])
+def test_eyring_stress_is_two_lambda_over_alpha_at_every_temperature(lubricant):
+    """tau_E0 = 2 Lambda / alpha (Bair & Winer; Arana et al. 2019 eq. 12): the configured Eyring
+    stress at the anchor temperature, and tau_E0 alpha the same at every temperature, so the
+    hotter oil's smaller alpha gives the larger Eyring stress (Eyring's k Theta / v_tau rises with
+    temperature too); the 'constant' law keeps it flat."""
+    cfg = sim.load_config([f"lubricant={lubricant}"])
+    lub = Lubricant.from_config(cfg.lubricant)
+    assert lub.eyring_stress_temperature_law == "bair_winer"
+    assert lub.eyring_stress_at(lub.pressure_viscosity_temperature) == lub.eyring_stress
+    temperatures = np.array([20.0, 40.0, 70.0, 100.0, 120.0])
+    tau = lub.eyring_stress_at(temperatures)
+    np.testing.assert_allclose(tau * lub.pressure_viscosity_at(temperatures),
+                               lub.eyring_stress * lub.pressure_viscosity, rtol=1e-12)
+    assert np.all(np.diff(tau) > 0.0)
+    flat = Lubricant.from_config({**cfg.lubricant, "eyring_stress_temperature_law": "constant"})
+    np.testing.assert_array_equal(flat.eyring_stress_at(temperatures), lub.eyring_stress)
+
+
 def _case(law, temperature):
     cfg = sim.load_config(["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", f"load.oil_temperature={temperature}",
                            f"lubricant.pressure_viscosity_temperature_law={law}"])

@@ -203,12 +203,13 @@ def test_eyring_law_matches_published_twin_disc_curve():
     p_mean = math.pi * p_h / 4.0
     z = ehl.roelands_index(c["eta0"], c["alpha_p"])
     eta_p = ehl.pressure_viscosity(p_mean, c["eta0"], c["alpha_p"], z, ehl.PV_ROELANDS)
-    lub = OmegaConf.load(REPO / "conf" / "lubricant" / "fva3.yaml")
+    lub = Lubricant.from_config(OmegaConf.to_container(OmegaConf.load(REPO / "conf" / "lubricant" / "fva3.yaml")))
     pts = np.array(data["points"], dtype=float)
     peak = pts[np.argmax(pts[:, 1]), 0]
     for S, mu in pts[pts[:, 0] <= peak]:
         v = S * u
-        rheology = ehl.FilmRheology(lub.eyring_stress, lub.limiting_shear_stress_0, lub.limiting_shear_coefficient,
+        rheology = ehl.FilmRheology(lub.eyring_stress_at(c["temperature"]), lub.limiting_shear_stress_0,
+                                    lub.limiting_shear_coefficient,
                                     lub.shear_modulus)
         g = ehl.traction_eyring(p_mean, v, h, 0.0, eta_p, rheology, SOLID, 2.0 * b / u)
         assert abs(g * v / p_mean - mu) <= 0.01, (S, mu, g * v / p_mean)
