@@ -13,6 +13,7 @@ from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheolo
 from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z, FL_U, FL_W, NC, NEV,
                                   NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
+from sim.physics.lubricant import MPA_S_PER_PA_S
 from sim.solvers.symmetry import symmetry_classes
 from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_friction
 
@@ -20,7 +21,6 @@ from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, solve_fri
 MM_PER_M = 1e3
 MM_PER_UM = 1e-3
 MM2_PER_M2 = 1e6
-MPA_S_PER_PA_S = 1e-6
 T_PER_MM3_PER_KG_PER_M3 = 1e-12     # density: 1 kg/m^3 = 1e-12 t/mm^3
 
 # Speed 0 (``load.speed = 0``): the zero-speed breakaway (starting) torque, the speed -> 0 limit of

@@ -29,7 +29,7 @@ import numpy as np
 
 from sim.physics import ehl
 from sim.physics import friction as _friction
-from sim.physics.lubricant import Lubricant
+from sim.physics.lubricant import MPA_S_PER_PA_S, Lubricant
 
 #: Traction laws of :mod:`sim.physics.ehl` by their function name.
 TRACTION_LAWS = {
@@ -87,7 +87,7 @@ def twin_disc_contact(cfg, p_h, u, R, temperature):
     E_prime = float(cfg.material.E) / (1.0 - float(cfg.material.nu) ** 2)
     b = 4.0 * R * p_h / E_prime
     q = np.pi * b * p_h / 2.0
-    eta0 = float(lub.dynamic_viscosity(temperature)) * 1e-6       # Pa s -> MPa s
+    eta0 = float(lub.dynamic_viscosity(temperature)) * MPA_S_PER_PA_S
     u_mm = u * 1e3
     alpha_p = float(lub.pressure_viscosity_at(temperature))
     h = ehl.film_line(u_mm, q, R, eta0, alpha_p, E_prime, ehl.FILM_FORMULAS[str(cfg.friction.film_thickness)])
