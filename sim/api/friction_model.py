@@ -228,6 +228,11 @@ class FrictionModel:
         # roller_loads, ring_loads))
         loads = np.zeros((g.Z, NFL))
         wc, converged = solve_friction(pb.wc, wR, psi, wi, pb.fresh, case, settings, totals, loads, pb.jac)
+        # Gupta's inlet-heating factor is floored at 0 where its pressure term outgrows 1, far beyond its
+        # fitted range (thermal loading L of several hundred: FVA 3 below about -30 degC): no film and no
+        # rolling loss there is no result, so the case counts as not converged rather than report that torque
+        evaluated = np.unique(source)
+        film_lost = not static and bool(np.any((case.film.h[evaluated] == 0.0) & (case.bearing.q[evaluated] > 0.0)))
         wR[:] = wR[source]
         psi[:] = psi[source]
         loads[:] = loads[source]
@@ -246,7 +251,7 @@ class FrictionModel:
             skew_sliding = totals[EV_TOUT] * totals[EV_PSKEW] / power.sum()
             power_loss = float(power.sum()) * W_PER_N_MM_PER_S
         return {
-            "friction_converged": bool(converged),
+            "friction_converged": bool(converged) and not film_lost,
             "torque": float(components.sum()) if static else float(totals[EV_TOUT]),
             "torque_component": components,
             "power_loss": power_loss,

@@ -269,7 +269,9 @@ def film_thermal_factor_gupta(p_h, E_prime, L, srr):
     -------
     float
         phi_T in [0, 1]: 1 at L = 0, decreasing in L and in |S|. The numerator reaches 0 at
-        L = (E'/(13.2 p_h))^(1/0.42), far beyond the fitted range; it is floored at 0 there.
+        L = (E'/(13.2 p_h))^(1/0.42), far beyond the fitted range; it is floored at 0 there, and
+        the friction model reports a case with such a contact as not converged
+        (:meth:`sim.api.friction_model.FrictionModel.evaluate`).
     """
     if L <= 0.0:
         return 1.0

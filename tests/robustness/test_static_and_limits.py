@@ -201,3 +201,18 @@ def test_command_line_refuses_a_load_beyond_the_static_limit(tmp_path):
               tmp_path)
     assert_refused(out, "load.Fa = 1e+07 N is outside the allowed range", "solver.max_static_load_ratio")
     assert not (tmp_path / "run").exists()
+
+
+# ---------------------------------------------------------------------------- very cold oil
+def test_a_film_the_inlet_heating_factor_cancels_is_no_result():
+    """FVA 3 at -40 degC (the Walther line extrapolated to 680,000 mm^2/s, far below the oil's pour
+    point): the thermal loading L = eta0 beta u^2 / k of the inlet reaches thousands, where the
+    pressure term of Gupta's factor (1 - 13.2 (p_h/E') L^0.42) passes 0 and the factor is floored at
+    0: no film and no rolling loss. That torque (16 N mm where -20 degC gives 2771) is not reported:
+    the case is not converged. At -20 degC (L ~ 130) the film stands and the case converges."""
+    cold = _sim("bearing=trb_32208", "load.Fr=0", "load.oil_temperature=-40")
+    assert not bool(_one(cold, "converged"))
+    assert "torque" not in cold        # a single case without a result carries no torque variable
+    cool = _sim("bearing=trb_32208", "load.Fr=0", "load.oil_temperature=-20")
+    assert bool(_one(cool, "converged"))
+    assert np.all(cool.lambda_ratio.values > 1.0) and _one(cool, "torque") > 1000.0
