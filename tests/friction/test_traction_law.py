@@ -209,7 +209,6 @@ def test_eyring_law_matches_published_twin_disc_curve():
     for S, mu in pts[pts[:, 0] <= peak]:
         v = S * u
         rheology = ehl.FilmRheology(lub.eyring_stress_at(c["temperature"]), lub.limiting_shear_stress_0,
-                                    lub.limiting_shear_coefficient,
-                                    lub.shear_modulus)
+                                    lub.limiting_shear_coefficient, lub.shear_modulus)
         g = ehl.traction_eyring(p_mean, v, h, 0.0, eta_p, rheology, SOLID, 2.0 * b / u)
         assert abs(g * v / p_mean - mu) <= 0.01, (S, mu, g * v / p_mean)
