@@ -52,7 +52,7 @@ def test_lubricant_keeps_its_alpha_at_the_anchor_and_its_roelands_index_everywhe
 @pytest.mark.parametrize("lubricant", ["fva3", "pinion_oil"])
 def test_eyring_stress_is_two_lambda_over_alpha_at_every_temperature(lubricant):
     """tau_E0 = 2 Lambda / alpha (Bair & Winer; Arana et al. 2019 eq. 12): the configured Eyring
-    stress at the anchor temperature, and tau_E0 alpha the same at every temperature, so the
+    stress at the anchor temperature, and tau_E0 alpha the same at every temperature (to round-off: rtol 1e-12), so the
     hotter oil's smaller alpha gives the larger Eyring stress (Eyring's k Theta / v_tau rises with
     temperature too); the 'constant' law keeps it flat."""
     cfg = sim.load_config([f"lubricant={lubricant}"])
