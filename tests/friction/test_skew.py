@@ -272,8 +272,7 @@ def test_skew_and_spin_moment_balance_of_every_roller(name):
 def test_torque_equals_power_over_speed_with_skew(name):
     """Energy balance with skew: the outer-ring torque equals power loss / inner-ring speed
     within 1 % (issue 18; the first-order kinematics leave O(psi^2) terms out of the moments);
-    the lateral-slip power (a part of the sliding component, whose rigid circumferential part
-    may be negative) is a dissipation."""
+    the lateral-slip power (a part of the sliding component) is a dissipation."""
     case = dataset(name)
     power_over_speed = float(case.power_loss) * 1e3 / (float(case.speed) * math.pi / 30.0)
     assert float(case.torque) == pytest.approx(power_over_speed, rel=1e-2)

@@ -50,7 +50,34 @@ def test_outer_ring_torque_equals_power_over_speed(bearing, overrides):
     assert float(case.torque) > 0.0
     assert abs(float(case.torque) - torque_from_power) <= 1e-3 * float(case.torque)
     np.testing.assert_allclose(float(case.torque_component.sum()), float(case.torque), rtol=1e-12)
-    assert bool((case.torque_component.sel(component=["rolling", "hysteresis", "drilling", "rib", "cage"]) >= 0).all())
+    assert bool((case.torque_component >= 0).all())
+
+
+# Cases whose breakdown had a negative component while the rigid slip of a contact was its
+# load-weighted mean slip (session 18, random cases over 7 bearings): the TSRB's sliding down to
+# -0.46 % of its torque where the slip changes sign along the contact, a TRB's drilling -2.5e-5.
+NEGATIVE_BEFORE = [
+    ("tsrb_pinion_alpha", ["load.Fa=18886", "load.Fr=0", "load.speed=1377.8", "load.oil_temperature=73.6",
+                           "lubricant=pinion_oil"]),
+    ("tsrb_pinion_long", ["load.Fa=17404", "load.Fr=7754", "load.speed=1879.5", "load.oil_temperature=95.1",
+                          "lubricant=pinion_oil"]),
+    ("trb_31313", ["load.Fa=4907", "load.Fr=3970", "load.speed=2730", "load.oil_temperature=27.6",
+                   "lubricant=pinion_oil"]),
+]
+
+
+@pytest.mark.parametrize("bearing,overrides", ENERGY_CASES + NEGATIVE_BEFORE)
+def test_every_loss_component_is_a_dissipation(bearing, overrides):
+    """Each component of the breakdown is a power the bearing dissipates, so none is negative.
+    For sliding and drilling this holds by construction (sim.physics.friction, module
+    docstring): a contact's slip power along the rolling direction, sum G_k s_k^2 with the
+    slices' traction conductances G_k > 0, splits into the power of the G-weighted mean slip,
+    (sum F_t)^2 / sum G_k >= 0 (sliding), and the G-weighted variance of the slip about it, >= 0
+    (drilling, with the spin power, itself >= 0). Bound: 0, less the round-off of that
+    difference (1e-12 of the torque)."""
+    case = run(bearing, *overrides)
+    assert float(case.torque_component.min()) >= -1e-12 * float(case.torque)
+    np.testing.assert_allclose(float(case.torque_component.sum()), float(case.torque), rtol=1e-12)
 
 
 def test_cage_speed_follows_rolling_kinematics_under_load():
