@@ -126,13 +126,18 @@ def integration_settings(g, op, body, raw, fr, dyn, omega_n):
     steps): roller and ring positions by the inner ring's axial displacement (the contact
     approach, ~10 um), their rates by that times the contact frequency, angles by it over Lwe,
     orbit and cage angles by 1 rad, speeds by the cage speed, momenta by I_x times the roller
-    speed, energies by the torque times the inner-ring turn of one window.
+    speed, energies by the torque times the inner-ring turn of one window. The window is
+    ``window_revolutions`` inner-ring turns rounded to a whole number of roller passes.
     """
     Z = g.Z
     delta = max(abs(raw["ring"][0]), abs(raw["ring"][1]))
     wc = float(fr["kinematics"][0])
     wR = float(np.abs(fr["kinematics"][1]).max())
-    window = float(dyn["window_revolutions"]) * 2.0 * np.pi / body.wi
+    # window: about window_revolutions inner-ring turns, rounded to whole roller passes (the cage
+    # turning by 2 pi / Z at the quasi-static cage speed): under a radial load or a tilt the steady
+    # state is periodic with the roller pass, so the means of such windows repeat
+    passes = max(1, round(float(dyn["window_revolutions"]) * Z * wc / body.wi))
+    window = passes * 2.0 * np.pi / (Z * wc)
     scale = np.zeros(state_size(Z))
     per_roller = np.zeros(NS)
     per_roller[[XI, ETA]] = delta
@@ -176,8 +181,11 @@ def refresh_film(problem, y, wR, active):
 
 def outputs(model, op, dcase, integ, wall_time, output_cfg):
     """(summary, series): the steady-state summary as :func:`sim.api.bearing_model.case_results`
-    plus the friction outputs (means over the last window, output units), and the time series
-    (output units; sim.io.SERIES_VARIABLES)."""
+    plus the friction outputs (torque, breakdown, power, cage speed: means over the last window;
+    per-roller loads, poses, skew and tilt: at the instant the rollers pass the quasi-static
+    azimuths, roller j at 2 pi j / Z, so that they compare roller by roller with the quasi-static
+    solution; output units), and the time series (output units; sim.io.SERIES_VARIABLES), rollers
+    as numbered at the start."""
     g = model.geometry
     Z = g.Z
     body = dcase.problem.body
@@ -206,28 +214,35 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
         "torque_component": tot[:, TO_P0:TO_DAMP] / body.wi,
         "power_loss": tot[:, TO_P0:TO_DAMP].sum(axis=1) * W_PER_N_MM_PER_S,
     }
-    # steady state: the loads at the end state for the load-derived outputs, the last window's means
-    yl = y[-1]
-    q = dcase.problem.case.bearing.q.copy()
+    # per-roller outputs: of the steady state at the instant the rollers pass the quasi-static
+    # azimuths, roller j the one at 2 pi j / Z (Integration._align: under a radial load each roller's
+    # load follows its azimuth, so a window mean per roller would mix the load zone with the rest);
+    # without a steady state the end state, rollers as numbered in the time series
+    if integ.steady:
+        yl, rl, order = integ.y_aligned, integ.rol_aligned, integ.azimuth_order
+    else:
+        yl, rl, order = y[-1], rol[-1], np.arange(Z)
+    rl = rl[order]
+    state = yl[:o_ring].reshape(Z, NS)[order]
+    q = dcase.problem.case.bearing.q[order]
     raw = dict(converged=bool(integ.steady), iterations=int(integ.windows), wall_time=wall_time,
-               ring=yl[o_ring:o_ring + 2].copy(), poses=roller[-1][:, [XI, ETA, THETA]].copy(), line_load=q,
-               pressure=model.hertz_pressure(q), Q=rol[-1][:, [RO_QO, RO_QI]], Q_rib=rol[-1][:, RO_QRIB],
-               free=dcase.problem.case.bearing.free.copy(),
+               ring=yl[o_ring:o_ring + 2].copy(), poses=state[:, [XI, ETA, THETA]].copy(), line_load=q,
+               pressure=model.hertz_pressure(q), Q=rl[:, [RO_QO, RO_QI]], Q_rib=rl[:, RO_QRIB],
+               free=dcase.problem.case.bearing.free[order],
                residual=np.zeros(2))
     summary = case_results(model, op, raw, output_cfg)
     if not integ.steady:
         return summary, series
+    # scalars: the means over the last window (whole roller passes)
     power = tot[last, TO_P0:TO_DAMP].mean(axis=0)
     torque = float(tot[last, TO_TOUT].mean())
-    # film outputs at the end state, with the film of the last window
-    srr, film_um, lam = film_outputs(dcase.problem.case, rol[-1][:, RO_QO] + rol[-1][:, RO_QI], float(yl[o_cage + 1]),
-                                     rol[-1][:, RO_WR], body.wi)
+    # film outputs at the aligned state, with the film of the last window
+    srr, film_um, lam = film_outputs(dcase.problem.case, integ.rol_aligned[:, RO_QO] + integ.rol_aligned[:, RO_QI],
+                                     float(yl[o_cage + 1]), integ.rol_aligned[:, RO_WR], body.wi)
     summary.update(
         srr=srr, film_thickness=film_um, lambda_ratio=lam,
-        Q=rol[last][:, :, [RO_QO, RO_QI]].mean(axis=0),
-        Q_rib=rol[last][:, :, RO_QRIB].mean(axis=0),
-        roller_tilt=np.degrees(roller[last][:, :, THETA].mean(axis=0)),
-        roller_skew=np.degrees(roller[last][:, :, PSI].mean(axis=0)),
+        roller_tilt=np.degrees(state[:, THETA]),
+        roller_skew=np.degrees(state[:, PSI]),
         torque=torque,
         # breakdown in proportion to each mechanism's power (as the quasi-static result)
         torque_component=torque * power / power.sum(),

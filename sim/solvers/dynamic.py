@@ -570,8 +570,13 @@ class Integration:
             Y = np.array(ys[win])
             R = np.array(rols[win])
             T = np.array(tots[win])
-            means = (Y[:, o_cage + 1].mean(), T[:, TO_TOUT].mean(), R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0),
-                     Y[:, PSI:self.Z * NS:NS].mean(axis=0))
+            # per-roller means sorted: under a radial load or a tilt the steady state is periodic in
+            # the frame of the load, each roller's load and skew following its azimuth, so over a
+            # window of whole roller passes (sim.api.dynamic_model.integration_settings) the set of the
+            # rollers' means repeats, one roller's mean passing to another
+            means = (Y[:, o_cage + 1].mean(), T[:, TO_TOUT].mean(),
+                     np.sort(R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0), axis=0),
+                     np.sort(Y[:, PSI:self.Z * NS:NS].mean(axis=0)))
             if prev is not None:
                 d_speed = abs(means[0] - prev[0]) / abs(means[0])
                 d_torque = abs(means[1] - prev[1]) / max(abs(means[1]), np.finfo(float).tiny)
@@ -589,6 +594,32 @@ class Integration:
         self.rol_t = np.array(rols)
         self.tot_t = np.array(tots)
         self.last_window = np.arange(len(ts) - s.samples, len(ts))
+        if self.steady:
+            self._align(y, t, s)
+
+    def _align(self, y, t, s):
+        """The steady state at the instant the rollers pass the azimuths 2 pi j / Z of the
+        quasi-static solution (roller j at psi_j, the radial load along psi = 0): integrated on from
+        the end of the last window (state y at time t) until roller 0's orbit angle reaches the next
+        multiple of 2 pi / Z (less than one roller pass, the film of the last window). Sets
+        ``y_aligned``, ``rol_aligned``, ``tot_aligned`` (state and outputs there; the problem's
+        frames and line loads are left at that state) and ``azimuth_order`` (Z,): the roller at
+        azimuth 2 pi j / Z is roller ``azimuth_order[j]``."""
+        Z = self.Z
+        pitch = 2.0 * np.pi / Z
+        dphi = (-y[PHI]) % pitch
+        if dphi > 1e-9 * pitch:
+            sol = solve_ivp(self.f, (t, t + dphi / y[WPHI]), y, method=s.method, rtol=s.rtol, atol=s.atol,
+                            jac=self.jac)
+            if not sol.success:
+                raise RuntimeError(f"dynamic integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
+            y = sol.y[:, -1].copy()
+        slot = np.rint(np.mod(y[PHI:Z * NS:NS], 2.0 * np.pi) / pitch).astype(np.int64) % Z
+        if not np.array_equal(np.sort(slot), np.arange(Z)):
+            raise RuntimeError(f"rollers not one per azimuth slot at the aligned instant: slots {slot.tolist()}")
+        self.y_aligned = y
+        self.rol_aligned, self.tot_aligned = self.outputs(y)
+        self.azimuth_order = np.argsort(slot)
 
 
 @kernel

@@ -18,6 +18,7 @@ from sim.solvers.dynamic import (E_DAMP, E_DISS, E_ELASTIC, E_IN, E_POCKET, ETA,
                                  roller_axis)
 
 TRB = ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.speed=2000"]
+CAGE_COMPONENT = [F.COMPONENTS.index("cage")]
 # the pinion case of thesis 7.4 (Fig. 7.28) with the thesis's TSRB (Table 7.4): 35 kN axial, 1100 rpm, pinion oil 50 degC
 PINION_TSRB = ["bearing=tsrb_pinion", "lubricant=pinion_oil", "load.Fa=35000", "load.Fr=0", "load.speed=1100",
                "load.oil_temperature=50"]
@@ -203,6 +204,47 @@ def test_steady_state_matches_the_quasi_static_solver(overrides):
           f"{integ.windows} windows")
     assert err_Q < 0.01
     assert err_T < 0.03
+    assert err_c < 0.005
+
+
+@pytest.mark.parametrize("overrides", [
+    ["bearing=trb_31313", "load.Fa=20000", "load.Fr=10000", "load.speed=1500", "load.oil_temperature=60"],
+    ["bearing=tsrb_reference", "load.Fa=6000", "load.Fr=3000", "load.speed=1000", "load.oil_temperature=45"],
+], ids=["trb_31313", "tsrb_reference"])
+def test_steady_state_under_a_radial_load_matches_the_quasi_static_solver(overrides):
+    """Under a radial load each roller's load follows its azimuth, so the steady state is periodic
+    with the roller pass: the detector compares windows of whole roller passes and the rollers'
+    means as a set, and the summary gives each roller at the azimuth 2 pi j / Z of the quasi-static
+    solution (sim.api.dynamic_model.outputs). Until session 18 the windows were one inner-ring turn
+    and the per-roller means were compared roller by roller: they changed by ~0.5 from window to
+    window and no run under a radial load found a steady state. Targets of issue 18: roller loads
+    within 1 % (here of the largest: the load zone ends at small loads), cage speed within 0.5 %,
+    torque within 3 %. The one mechanism in which the two models differ by design is the cage
+    pocket friction: the quasi-static cage holds every roller at the cage speed at its azimuth and
+    so carries each roller's net tangential traction, which under a radial load changes sign
+    around the bearing; in the time domain a roller moves within its pocket play and touches its
+    pockets far more lightly (README, dynamic solver). So the torque without the cage component
+    must agree within 1 %, and the dynamic cage component must not exceed the quasi-static one."""
+    model, friction, op, plain, dc = dynamic_case(overrides + ["solver.dynamic.start=rolling"])
+    integ = dm.run(dc)
+    summary, _ = dm.outputs(model, op, dc, integ, 0.0, plain["output"])
+    qs = dc.quasi_static
+    assert integ.steady, f"no steady state in {integ.windows} windows: changes {integ.change}"
+    Q = qs["Q"]
+    assert Q.min() < 0.7 * Q.max(), "the radial load must make the load distribution non-uniform"
+    err_Q = np.abs(summary["Q"] - Q).max() / Q.max()
+    err_T = abs(summary["torque"] / qs["torque"] - 1.0)
+    cage = list(CAGE_COMPONENT)
+    rest_d = summary["torque"] - summary["torque_component"][cage].sum()
+    rest_q = qs["torque"] - qs["torque_component"][cage].sum()
+    err_c = abs(summary["cage_speed"] / qs["cage_speed"] - 1.0)
+    print(f"{overrides[0]}: loads {err_Q:.2e}, torque {err_T:.2e}, without the cage {rest_d / rest_q - 1.0:.2e}, cage "
+          f"pocket friction {summary['torque_component'][cage].sum():.2f} vs {qs['torque_component'][cage].sum():.2f} "
+          f"N mm, cage speed {err_c:.2e}, {integ.windows} windows")
+    assert err_Q < 0.01
+    assert err_T < 0.03
+    assert abs(rest_d / rest_q - 1.0) < 0.01
+    assert summary["torque_component"][cage].sum() <= qs["torque_component"][cage].sum()
     assert err_c < 0.005
 
 
