@@ -67,9 +67,10 @@ def last_window(c, samples, wi):
     """Of a dynamic run's time series ``c`` (one case), over its last window of ``samples``
     samples: the means of the outer-ring torque, of power loss / inner-ring speed ``wi`` [rad/s] and
     of the drive torque [N mm], and the largest |mean skew| and |mean tilt| of a roller [deg]. At a
-    steady state these are the summary's own (sim.api.dynamic_model.outputs takes the same
-    window); without one, where the summary has no friction outputs, they still say where the run
-    ended."""
+    steady state the torques are the summary's own (sim.api.dynamic_model.outputs takes the same
+    window; its per-roller skew and tilt are those at one instant of it, the same under a pure
+    axial load); without one, where the summary has no friction outputs, they still say where the
+    run ended."""
     last = c.isel(time=slice(-samples, None))
     return {"torque": float(last.torque_t.mean()),
             "loss_torque": float(last.power_loss_t.mean()) / W_PER_N_MM_PER_S / wi,
