@@ -311,6 +311,7 @@ class FrictionConfig:
     seed_tolerance_factor: Any = key(Number(1.0, 1e4))
     load_coupling_tolerance: Any = key(Number(0.0, 1e-2, low_open=True))
     load_coupling_passes: Any = key(Number(1, 100, integer=True))
+    load_coupling_depth: Any = key(Number(1, 10, integer=True))
     drag: DragConfig = field(default_factory=DragConfig)
     skew: SkewConfig = field(default_factory=SkewConfig)
 
