@@ -80,6 +80,30 @@ def test_every_loss_component_is_a_dissipation(bearing, overrides):
     np.testing.assert_allclose(float(case.torque_component.sum()), float(case.torque), rtol=1e-12)
 
 
+def test_a_roller_that_stops_rolling_on_a_ring_has_a_speed_balance():
+    """TRB 31313 at Fa 3.0 kN, Fr 3.3 kN, 542 rpm, pinion oil at 75 degC (a random case, session
+    18): the two rollers at the end of the load zone carry 3.8 N (2274 N at the top) and their rib
+    friction brakes them below rolling on one ring. The rolling couple's direction turned there as
+    a sign, their moment about the axis jumped by twice the couple (+0.52 to -1.22 N mm between
+    20.97 and 20.98 rad/s) and had no root: the case failed. Regularised like the boundary friction
+    (sim.physics.friction), the balance has a root: the case converges with those rollers skidding
+    (below half their rolling speed) and the torque equals power loss / speed (1e-3, as above)."""
+    from sim.api.friction_model import coupled_solution
+    from sim.api.simulation import build_friction, build_model
+    from tests.helpers import case as operating_point
+
+    cfg = sim.load_config(["bearing=trb_31313", "lubricant=pinion_oil"])
+    model = build_model(cfg)
+    friction = build_friction(cfg, model)
+    op = operating_point(3040.4, 3324.8, 542.0, 0.0, 74.9)
+    raw, fr = coupled_solution(model, friction, op)
+    assert fr["friction_converged"] and fr["coupling_converged"]
+    wR = fr["kinematics"][1]
+    assert wR.min() < 0.5 * wR.max()
+    torque_from_power = fr["power_loss"] * 1e3 / (op.speed_rpm * np.pi / 30.0)
+    assert abs(fr["torque"] - torque_from_power) <= 1e-3 * fr["torque"]
+
+
 def test_cage_speed_follows_rolling_kinematics_under_load():
     """A loaded bearing slips little: the cage speed from the traction balance stays within 1 %
     of rolling without slip (2.20) (the friction moments are 1e-3 of the traction capacity), and
