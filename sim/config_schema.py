@@ -306,6 +306,7 @@ class FrictionConfig:
     inlet_shear_heating: bool = key(Flag())
     temperature_tolerance: Any = key(Number(0.0, 10.0, low_open=True, units="K"))
     kinematics: str = key(Choice(("rolling", "traction")))
+    cage_guidance: str = key(Choice(("free", "rigid")))
     max_iterations: Any = key(Number(1, 10000, integer=True))
     tolerance: Any = key(Number(1e-14, 1e-2, low_open=True))
     seed_tolerance_factor: Any = key(Number(1.0, 1e4))

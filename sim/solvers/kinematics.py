@@ -14,10 +14,10 @@ from collections import namedtuple
 import numpy as np
 
 from sim._math.jit import internal_kernel, kernel
-from sim._math.linalg import copy_vector
+from sim._math.linalg import copy_vector, solve_dense
 from sim._math.roots import root_search, root_search_step
-from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, cage_pocket_loads, friction_loads, lubrication_state,
-                                  pocket_skew_couple, roller_friction)
+from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, NO_RATES, cage_pocket_loads, friction_loads,
+                                  lubrication_state, pocket_skew_couple, roller_drag, roller_friction, roller_traction)
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
 # friction moments about the skew axis S (Z,), cage z-moments per roller T (Z,)) with respect to
@@ -566,3 +566,116 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     if not loads_known:
         cage_pocket_loads(wR, psi, wc, wi, active, case, roller_loads)
     return wc, converged
+
+
+@internal_kernel
+def _free_roller_residuals(j, x, wi, case, ev, r):
+    """Residuals of roller j free in its pocket at x = (omega_R, orbit speed[, psi]) [rad/s, rad]:
+    r = (moment about its axis, z-moment of its contacts and drag[, moment about the skew axis with
+    the pocket's skew couple]) [N mm]; ``ev`` holds the roller's evaluation there (no pocket force:
+    no pocket friction)."""
+    psi = x[2] if x.shape[0] > 2 else 0.0
+    roller_traction(j, x[0], psi, NO_RATES, x[1], wi, case, ev)
+    roller_drag(x[1], case.frames.Cen[j, 0], case.par, ev)
+    r[0] = ev[EV_MU]
+    r[1] = ev[EV_TZ]
+    if x.shape[0] > 2:
+        r[2] = ev[EV_MS] + pocket_skew_couple(psi, case.par)[0]
+
+
+@internal_kernel
+def _free_roller(j, x, wi, case, ev, tol, max_iter):
+    """Newton (forward-difference Jacobian, backtracking on the residual scaled by ``tol``) on the
+    residuals of :func:`_free_roller_residuals` from x (written); returns converged."""
+    m = x.shape[0]
+    r = np.empty(m)
+    rt = np.empty(m)
+    xt = np.empty(m)
+    J = np.empty((m, m))
+    R = np.empty((m, 1))
+    _free_roller_residuals(j, x, wi, case, ev, r)
+    norm = 0.0
+    for a in range(m):
+        norm += (r[a] / tol[a]) ** 2
+    for _ in range(max_iter):
+        if norm <= 1.0:
+            return True
+        for b in range(m):
+            h = FD_STEP * (max(abs(x[2]), case.par.skew_clearance) if b == 2 else abs(x[b]))
+            copy_vector(xt, x)
+            xt[b] += h
+            _free_roller_residuals(j, xt, wi, case, ev, rt)
+            for a in range(m):
+                J[a, b] = (rt[a] - r[a]) / h
+        for a in range(m):
+            R[a, 0] = -r[a]
+        dx = solve_dense(J, R)
+        if not np.all(np.isfinite(dx)):
+            return False
+        step = 1.0
+        accepted = False
+        for _ in range(MAX_HALVINGS):
+            for a in range(m):
+                xt[a] = x[a] + step * dx[a, 0]
+            _free_roller_residuals(j, xt, wi, case, ev, rt)
+            trial = 0.0
+            for a in range(m):
+                trial += (rt[a] / tol[a]) ** 2
+            if trial < norm:
+                accepted = True
+                break
+            step *= 0.5
+        if not accepted:
+            return False
+        copy_vector(x, xt)
+        copy_vector(r, rt)
+        norm = trial
+    return norm <= 1.0
+
+
+@kernel
+def free_roller_speeds(wc, wi, wR, psi, orbit, case, settings, totals, loads):
+    """Rollers free in their cage pockets (``friction.cage_guidance = free``): from the rigid-cage
+    solution (cage speed wc [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
+    each loaded roller's own orbit speed and spin speed (and skew) with no tangential pocket force:
+    zero moment about its axis and zero z-moment of its contacts and drag (and zero moment about
+    its skew axis), each roller on its own (module docstring of sim.api.friction_model,
+    FrictionModel). Writes wR, psi, ``orbit`` (Z,) [rad/s] (the unloaded rollers at wc),
+    ``totals`` (NEV,) (weighted sums of the roller evaluations, no pocket friction) and ``loads``
+    (Z, NFL) (friction loads: no pocket friction force; with skew the lateral tractions). Tolerances:
+    FINAL_TOLERANCE_FACTOR x settings.tol_M on the moments, and on the z-moment x tol_T over the
+    number of rollers. Returns converged (every roller)."""
+    Z = wR.shape[0]
+    skew = case.par.skew
+    m = 3 if skew else 2
+    x = np.empty(m)
+    tol = np.empty(m)
+    tol[0] = FINAL_TOLERANCE_FACTOR * settings.tol_M
+    tol[1] = FINAL_TOLERANCE_FACTOR * settings.tol_T / max(settings.weight.sum(), 1.0)
+    if skew:
+        tol[2] = tol[0]
+    ev = np.empty(NEV)
+    r = np.empty(m)
+    converged = True
+    for i in range(NEV):
+        totals[i] = 0.0
+    for j in range(Z):
+        orbit[j] = wc
+        for a in range(loads.shape[1]):
+            loads[j, a] = 0.0
+        if not settings.active[j]:
+            continue
+        x[0] = wR[j]
+        x[1] = wc
+        if skew:
+            x[2] = psi[j]
+        converged = _free_roller(j, x, wi, case, ev, tol, settings.max_iter) and converged
+        wR[j] = x[0]
+        orbit[j] = x[1]
+        if skew:
+            psi[j] = x[2]
+        _free_roller_residuals(j, x, wi, case, ev, r)
+        friction_loads(ev, 0.0, loads[j])
+        for i in range(NEV):
+            totals[i] += settings.weight[j] * ev[i]
+    return converged

@@ -104,6 +104,29 @@ def test_a_roller_that_stops_rolling_on_a_ring_has_a_speed_balance():
     assert abs(fr["torque"] - torque_from_power) <= 1e-3 * fr["torque"]
 
 
+@pytest.mark.parametrize("bearing,overrides", [
+    ("trb_32208", ["load.Fa=4500", "load.Fr=9000"]),
+    ("trb_31313", ["load.Fa=35000", "load.Fr=15000", "load.speed=1100", "lubricant=pinion_oil",
+                   "load.oil_temperature=50", "friction.skew.enabled=true"]),
+    ("tsrb_prototype", ["load.Fa=3300", "load.Fr=3000"]),
+])
+def test_rollers_free_in_their_pockets_keep_the_energy_balance_and_pay_no_pocket_friction(bearing, overrides):
+    """friction.cage_guidance = free: each loaded roller orbits at its own speed, its contacts'
+    z-moment about the bearing axis balanced without a pocket force (and with skew its skew moment
+    by the pocket's couple). Then the cage pocket friction is 0, every other mechanism stays
+    within 0.5 % of the rigid cage's (the speeds move by the roller's own slip only), and the
+    outer-ring torque equals power loss / speed within 1e-3, as for the rigid cage."""
+    rigid = run(bearing, *overrides)
+    free = run(bearing, *overrides, "friction.cage_guidance=free")
+    cage = list(rigid.component.values).index("cage")
+    assert float(free.torque_component[cage]) == 0.0 < float(rigid.torque_component[cage])
+    others = [k for k in range(rigid.component.size) if k != cage]
+    np.testing.assert_allclose(free.torque_component.values[others], rigid.torque_component.values[others],
+                               rtol=5e-3, atol=1e-3 * float(rigid.torque))
+    omega_i = np.pi * float(free.speed) / 30.0
+    assert abs(float(free.torque) - float(free.power_loss) * 1e3 / omega_i) <= 1e-3 * float(free.torque)
+
+
 def test_cage_speed_follows_rolling_kinematics_under_load():
     """A loaded bearing slips little: the cage speed from the traction balance stays within 1 %
     of rolling without slip (2.20) (the friction moments are 1e-3 of the traction capacity), and
