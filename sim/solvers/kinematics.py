@@ -637,10 +637,11 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter):
 def free_roller_speeds(wc, wi, wR, psi, orbit, case, settings, totals, loads):
     """Rollers free in their cage pockets (``friction.cage_guidance = free``): from the rigid-cage
     solution (cage speed wc [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
-    each loaded roller's own orbit speed and spin speed (and skew) with no tangential pocket force:
-    zero moment about its axis and zero z-moment of its contacts and drag (and zero moment about
-    its skew axis), each roller on its own (module docstring of sim.api.friction_model,
-    FrictionModel). Writes wR, psi, ``orbit`` (Z,) [rad/s] (the unloaded rollers at wc),
+    each loaded roller's own orbit speed and spin speed (and skew) with no pocket force: zero
+    moment about its axis and zero z-moment of its contacts and drag about the bearing axis (the
+    time-domain model's orbit coordinate, sim.solvers.dynamic; and zero moment about its skew axis
+    with the pocket's couple), each roller on its own (conf/friction/default.yaml, README "Radial
+    loads"). Writes wR, psi, ``orbit`` (Z,) [rad/s] (the unloaded rollers at wc),
     ``totals`` (NEV,) (weighted sums of the roller evaluations, no pocket friction) and ``loads``
     (Z, NFL) (friction loads: no pocket friction force; with skew the lateral tractions). Tolerances:
     FINAL_TOLERANCE_FACTOR x settings.tol_M on the moments, and on the z-moment x tol_T over the
