@@ -602,7 +602,7 @@ class Integration:
         quasi-static solution (roller j at psi_j, the radial load along psi = 0): integrated on from
         the end of the last window (state y at time t) until roller 0's orbit angle reaches the next
         multiple of 2 pi / Z (less than one roller pass, the film of the last window). Sets
-        ``y_aligned``, ``rol_aligned``, ``tot_aligned`` (state and outputs there; the problem's
+        ``y_aligned``, ``rol_aligned`` (state and per-roller outputs there; the problem's
         frames and line loads are left at that state) and ``azimuth_order`` (Z,): the roller at
         azimuth 2 pi j / Z is roller ``azimuth_order[j]``."""
         Z = self.Z
@@ -618,7 +618,7 @@ class Integration:
         if not np.array_equal(np.sort(slot), np.arange(Z)):
             raise RuntimeError(f"rollers not one per azimuth slot at the aligned instant: slots {slot.tolist()}")
         self.y_aligned = y
-        self.rol_aligned, self.tot_aligned = self.outputs(y)
+        self.rol_aligned = self.outputs(y)[0]
         self.azimuth_order = np.argsort(slot)
 
 

@@ -634,15 +634,14 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter):
 
 
 @kernel
-def free_roller_speeds(wc, wi, wR, psi, orbit, case, settings, totals, loads):
+def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
     """Rollers free in their cage pockets (``friction.cage_guidance = free``): from the rigid-cage
     solution (cage speed wc [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
     each loaded roller's own orbit speed and spin speed (and skew) with no pocket force: zero
     moment about its axis and zero z-moment of its contacts and drag about the bearing axis (the
     time-domain model's orbit coordinate, sim.solvers.dynamic; and zero moment about its skew axis
     with the pocket's couple), each roller on its own (conf/friction/default.yaml, README "Radial
-    loads"). Writes wR, psi, ``orbit`` (Z,) [rad/s] (the unloaded rollers at wc),
-    ``totals`` (NEV,) (weighted sums of the roller evaluations, no pocket friction) and ``loads``
+    loads"). Writes wR, psi, ``totals`` (NEV,) (weighted sums of the roller evaluations, no pocket friction) and ``loads``
     (Z, NFL) (friction loads: no pocket friction force; with skew the lateral tractions). Tolerances:
     FINAL_TOLERANCE_FACTOR x settings.tol_M on the moments, and on the z-moment x tol_T over the
     number of rollers. Returns converged (every roller)."""
@@ -661,7 +660,6 @@ def free_roller_speeds(wc, wi, wR, psi, orbit, case, settings, totals, loads):
     for i in range(NEV):
         totals[i] = 0.0
     for j in range(Z):
-        orbit[j] = wc
         for a in range(loads.shape[1]):
             loads[j, a] = 0.0
         if not settings.active[j]:
@@ -672,7 +670,6 @@ def free_roller_speeds(wc, wi, wR, psi, orbit, case, settings, totals, loads):
             x[2] = psi[j]
         converged = _free_roller(j, x, wi, case, ev, tol, settings.max_iter) and converged
         wR[j] = x[0]
-        orbit[j] = x[1]
         if skew:
             psi[j] = x[2]
         _free_roller_residuals(j, x, wi, case, ev, r)
