@@ -102,10 +102,11 @@ def test_several_starts_leave_the_basin_of_the_best_start():
 
 def test_the_first_start_runs_as_alone_and_the_others_screen_within_the_budget():
     """With k starts the first (the verified best) runs exactly as it would alone on the budget
-    less the screening share, (k - 1) x start_evaluations: the same points in the same order
-    (so a study whose best start is in the right basin reaches it as fast as with one start).
-    Each other start then evaluates at most start_evaluations new points, and all of it stays
-    within max_evaluations; a tight budget leaves starts out."""
+    less the others' share, k x start_evaluations (a screening run from each other start and a
+    polish of a better point they find): the same points in the same order (so a study whose best
+    start is in the right basin reaches it as fast as with one start). Each other start then
+    evaluates at most start_evaluations new points, and all of it stays within max_evaluations; a
+    tight budget leaves starts out."""
     starts = [[0.25, 0.25], [0.5, 0.55], [0.1, 0.9], [0.9, 0.1]]
     kw = dict(initial_step=0.1, final_step=1e-9, active_tolerance=1e-4, restarts=2, restart_shrink=0.2)
 
@@ -118,9 +119,9 @@ def test_the_first_start_runs_as_alone_and_the_others_screen_within_the_budget()
         return local_refine(evaluate, u0, ["g"], **kw, **more), calls
 
     alone, first = recorded(starts[0], max_evaluations=40)
-    multi, calls = recorded(starts, max_evaluations=70, start_evaluations=10)
+    multi, calls = recorded(starts, max_evaluations=80, start_evaluations=10)
     assert calls[:len(first)] == first
-    assert multi.evaluations <= 70 and multi.runs >= alone.runs + 3
+    assert multi.evaluations <= 80 and multi.runs >= alone.runs + 3
     assert multi.value <= alone.value
     tight, calls = recorded(starts, max_evaluations=12, start_evaluations=10)
     assert tight.evaluations <= 12
