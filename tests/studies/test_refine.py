@@ -121,6 +121,9 @@ def test_the_first_start_runs_as_alone_and_the_others_screen_within_the_budget()
     alone, first = recorded(starts[0], max_evaluations=40)
     multi, calls = recorded(starts, max_evaluations=80, start_evaluations=10)
     assert calls[:len(first)] == first
+    # the first start stops at its share (it would use any budget: alone on 40 it takes all 40), and
+    # the next point is the second start's: 40 of the 80 are left for 3 screens and the polish
+    assert len(first) == 40 and calls[len(first)] == np.asarray(starts[1], dtype=float).tobytes()
     assert multi.evaluations <= 80 and multi.runs >= alone.runs + 3
     assert multi.value <= alone.value
     tight, calls = recorded(starts, max_evaluations=12, start_evaluations=10)
