@@ -46,7 +46,7 @@ CASE_VARIABLES = {
     "P0": ((), "N", "ISO 281 equivalent static load (2.8)"),
     "L10": ((), "1e6 rev", "basic rating life with C_eff (2.15)"),
     "cage_speed": ((), "rpm", "cage speed: from the traction balance with friction, else rolling without slip (2.20)"),
-    "torque": ((), "N*mm", "frictional torque of the bearing (on the outer ring); at speed 0 the breakaway torque (boundary friction, no film)"),
+    "torque": ((), "N*mm", "frictional torque of the bearing (on the outer ring; power loss / inner-ring speed with friction.kinematics = rolling); at speed 0 the breakaway torque (boundary friction, no film)"),
     "torque_component": (("component",), "N*mm", "torque breakdown by loss mechanism (power / inner-ring speed)"),
     "power_loss": ((), "W", "frictional power loss"),
     "skew_sliding": ((), "N*mm", "part of torque_component 'sliding' caused by roller skew: power of the lateral tractions on the lateral slip of the skewed rollers / inner-ring speed"),

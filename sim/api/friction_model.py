@@ -245,21 +245,30 @@ class FrictionModel:
         loads[:] = loads[source]
         power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
         srr, film_um, lam = film_outputs(case, load, wc, wR, wi)
-        if static:   # power / speed is the same at any speed (Coulomb friction): that of the nominal speed
+        # the torque is power / omega_i where the speeds are imposed: at speed 0 (Coulomb friction, the
+        # same at any speed: that of the nominal speed) and with rolling kinematics (2.20), (2.22), whose
+        # speeds leave the roller and cage moments unbalanced, so that the outer-ring torque is not the
+        # friction torque (TRB 32208, 4.5 / 3 kN, 2000 rpm: -1197 N mm on the outer ring, +776 from the
+        # power); with the traction balance, the outer-ring torque, and the breakdown in proportion to
+        # each mechanism's power sums to it exactly (it equals power / omega_i up to the kinematic
+        # tolerance, module docstring)
+        if self.traction_kinematics and not static:
+            components = totals[EV_TOUT] * power / power.sum()
+            skew_sliding = totals[EV_TOUT] * totals[EV_PSKEW] / power.sum()
+            torque = float(totals[EV_TOUT])
+        else:
             components = power / wi
             skew_sliding = totals[EV_PSKEW] / wi
+            torque = float(components.sum())
+        if static:
             power_loss = 0.0
             wc = 0.0
             wR[:] = 0.0
         else:
-            # breakdown in proportion to each mechanism's power: sums to the outer-ring torque exactly
-            # (which itself equals power / omega_i up to the kinematic tolerance, module docstring)
-            components = totals[EV_TOUT] * power / power.sum()
-            skew_sliding = totals[EV_TOUT] * totals[EV_PSKEW] / power.sum()
             power_loss = float(power.sum()) * W_PER_N_MM_PER_S
         return {
             "friction_converged": bool(converged) and not film_lost,
-            "torque": float(components.sum()) if static else float(totals[EV_TOUT]),
+            "torque": torque,
             "torque_component": components,
             "power_loss": power_loss,
             "srr": srr,

@@ -53,6 +53,22 @@ def test_outer_ring_torque_equals_power_over_speed(bearing, overrides):
     assert bool((case.torque_component >= 0).all())
 
 
+@pytest.mark.parametrize("bearing", ["trb_32208", "tsrb_reference"])
+def test_with_rolling_kinematics_the_torque_is_the_power_over_the_speed(bearing):
+    """friction.kinematics = rolling imposes the speeds (2.20), (2.22): the roller and cage moments
+    are then not balanced, and the torque of the contacts on the outer ring is not the bearing's
+    friction torque (it was -1197 N mm for the TRB 32208 at 4.5 / 2 kN, whose power loss is 162 W).
+    The friction torque of imposed speeds is the energy balance's, power loss / inner-ring speed
+    (as at speed 0): exact by construction (rtol 1e-12, round-off), positive, each component a
+    dissipation (>= 0), and the breakdown sums to it."""
+    case = run(bearing, "load.Fr=2000", "friction.kinematics=rolling")
+    omega_i = np.pi * float(case.speed) / 30.0
+    assert float(case.torque) > 0.0
+    np.testing.assert_allclose(float(case.torque), float(case.power_loss) * 1e3 / omega_i, rtol=1e-12)
+    np.testing.assert_allclose(float(case.torque_component.sum()), float(case.torque), rtol=1e-12)
+    assert bool((case.torque_component >= 0).all())
+
+
 # Cases whose breakdown had a negative component while the rigid slip of a contact was its
 # load-weighted mean slip (session 18, random cases over 7 bearings): the TSRB's sliding down to
 # -0.46 % of its torque where the slip changes sign along the contact, a TRB's drilling -2.5e-5.
