@@ -56,6 +56,11 @@ def validate(cfg):
         if isinstance(node, DictConfig):  # plain values; "???" where composition left one missing
             node = OmegaConf.to_container(node, resolve=True, throw_on_missing=False)
         problems += node_problems(schema, node, group, bearing_type=bearing_type, strict=True)
+    if OmegaConf.select(cfg, "friction.cage_guidance") == "free" and OmegaConf.select(cfg, "friction.kinematics") == "rolling":
+        # free rollers are solved from the traction balance (sim.solvers.kinematics.free_roller_speeds),
+        # which rolling kinematics replace: the option would have no effect
+        problems.append("friction.cage_guidance = free needs friction.kinematics = traction (rolling kinematics "
+                        "(2.20), (2.22) impose every roller's speed)")
     if not any(p.startswith("load.") for p in problems):
         try:
             operating_points(cfg.load)  # zipped lengths, repeated cases

@@ -34,6 +34,14 @@ def _one(ds, name):
     return ds[name].values[0, 0]
 
 
+def test_free_cage_guidance_with_rolling_kinematics_is_refused_by_name():
+    """friction.cage_guidance = free is solved from the traction balance, which rolling kinematics
+    replace; the combination would silently do nothing, so it is refused before anything runs."""
+    cfg = sim.load_config(["friction.kinematics=rolling", "friction.cage_guidance=free"])
+    with pytest.raises(ConfigError, match=r"friction\.cage_guidance = free needs friction\.kinematics = traction"):
+        sim.simulate(cfg)
+
+
 # ---------------------------------------------------------------------------- speed 0
 @pytest.mark.parametrize("bearing", ["tsrb_reference", "trb_32208"])
 @pytest.mark.parametrize("kinematics", ["traction", "rolling"])
