@@ -586,7 +586,8 @@ def _free_roller_residuals(j, x, wi, case, ev, r):
 @internal_kernel
 def _free_roller(j, x, wi, case, ev, tol, max_iter):
     """Newton (forward-difference Jacobian, backtracking on the residual scaled by ``tol``) on the
-    residuals of :func:`_free_roller_residuals` from x (written); returns converged."""
+    residuals of :func:`_free_roller_residuals` from x (written); returns converged, with ``ev``
+    the roller's evaluation at the returned x."""
     m = x.shape[0]
     r = np.empty(m)
     rt = np.empty(m)
@@ -611,6 +612,7 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter):
             R[a, 0] = -r[a]
         dx = solve_dense(J, R)
         if not np.all(np.isfinite(dx)):
+            _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the difference points
             return False
         step = 1.0
         accepted = False
@@ -626,6 +628,7 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter):
                 break
             step *= 0.5
         if not accepted:
+            _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the rejected trials
             return False
         copy_vector(x, xt)
         copy_vector(r, rt)
@@ -655,7 +658,6 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
     if skew:
         tol[2] = tol[0]
     ev = np.empty(NEV)
-    r = np.empty(m)
     converged = True
     for i in range(NEV):
         totals[i] = 0.0
@@ -672,8 +674,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
         wR[j] = x[0]
         if skew:
             psi[j] = x[2]
-        _free_roller_residuals(j, x, wi, case, ev, r)
-        friction_loads(ev, 0.0, loads[j])
+        friction_loads(ev, 0.0, loads[j])         # ev: the evaluation at x (_free_roller)
         for i in range(NEV):
             totals[i] += settings.weight[j] * ev[i]
     return converged
