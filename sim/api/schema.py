@@ -59,8 +59,9 @@ def validate(cfg):
     if OmegaConf.select(cfg, "friction.cage_guidance") == "free" and OmegaConf.select(cfg, "friction.kinematics") == "rolling":
         # free rollers are solved from the traction balance (sim.solvers.kinematics.free_roller_speeds),
         # which rolling kinematics replace: the option would have no effect
-        problems.append("friction.cage_guidance = free needs friction.kinematics = traction (rolling kinematics "
-                        "(2.20), (2.22) impose every roller's speed)")
+        problems.append("friction.kinematics = rolling imposes every roller's and the cage's speed ((2.20), (2.22)): "
+                        "a rigid cage; set friction.cage_guidance = rigid with it (friction.cage_guidance = free, the "
+                        "default, needs friction.kinematics = traction)")
     if not any(p.startswith("load.") for p in problems):
         try:
             operating_points(cfg.load)  # zipped lengths, repeated cases

@@ -885,7 +885,11 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             P_rigid = F_sum * F_sum / G_sum
             ev[EV_SLIDING] += P_rigid
             ev[EV_DRILLING] += P_slip - P_rigid
-    if Qrib[j] > 0.0:
+    if Qrib[j] > 0.0 and film.prib[j] > 0.0:
+        # a rib without load when the film was taken (film.prib 0: the time-domain solver holds the
+        # film over a window, and a roller can touch its rib within it) carries no traction until the
+        # next film, as an unloaded strip of the slices above (it divided by zero before: TRB 31313,
+        # 32 / 48 kN, 3821 rpm)
         prib = film.prib[j]
         nr = case.bearing.nrib[j, 0]
         nz = case.bearing.nrib[j, 1]

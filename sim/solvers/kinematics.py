@@ -102,6 +102,10 @@ FINAL_TOLERANCE_FACTOR = 0.1
 # direction that lowers the residual norm nowhere up to there is no descent direction, and the
 # caller falls back to the bracketing solve.
 MAX_HALVINGS = 30
+# Skew of the restarts of a free roller's solve on a cage pocket wall (free_roller_speeds), in units
+# of the pocket's skew clearance: just beyond it, on the wall's linear penalty branch (the wall
+# solutions of the tests lie 1.0001-1.01 clearances out); numerical choice.
+FREE_SKEW_WALL_START = 1.001
 
 
 @internal_kernel
@@ -670,7 +674,21 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
         x[1] = wc
         if skew:
             x[2] = psi[j]
-        converged = _free_roller(j, x, wi, case, ev, tol, settings.max_iter) and converged
+        ok = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
+        side = -1.0 if psi[j] < 0.0 else 1.0
+        for start in range(2 if skew and not ok else 0):
+            # the pocket's skew couple has a kink at |psi| = clearance; where the friction skew moment
+            # grows with the skew (no stable skew inside the play), the Newton step from the rigid
+            # solution's skew heads across a wall it cannot pass: start just on each wall, the
+            # rigid solution's side first (FREE_SKEW_WALL_START)
+            x[0] = wR[j]
+            x[1] = wc
+            x[2] = side * FREE_SKEW_WALL_START * case.par.skew_clearance
+            ok = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
+            if ok:
+                break
+            side = -side
+        converged = ok and converged
         wR[j] = x[0]
         if skew:
             psi[j] = x[2]

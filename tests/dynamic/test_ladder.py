@@ -225,32 +225,32 @@ def test_steady_state_under_a_radial_load_matches_the_quasi_static_solver(overri
     and the per-roller means were compared roller by roller: they changed by ~0.5 from window to
     window and no run under a radial load found a steady state. Targets of issue 18: roller loads
     within 1 % (here of the largest: the load zone ends at small loads), cage speed within 0.5 %,
-    torque within 3 %. The one mechanism in which the two models differ by design is the cage
-    pocket friction: the quasi-static cage holds every roller at the cage speed at its azimuth and
-    so carries each roller's net tangential traction, which under a radial load changes sign
-    around the bearing; in the time domain a roller moves within its pocket play and touches its
-    pockets far more lightly (README, dynamic solver). So the torque without the cage component
-    must agree within 1 %, and the dynamic cage component must not exceed the quasi-static one.
-    The quasi-static model with the rollers free in their pockets (friction.cage_guidance = free,
-    no pocket force: sim.solvers.kinematics.free_roller_speeds) must give the dynamic torque
-    within 1 % (measured 0.04 % and 0.15 %)."""
+    torque within 3 %. The quasi-static default has the rollers free in their pockets
+    (friction.cage_guidance = free: no tangential pocket force, sim.solvers.kinematics.free_roller_speeds),
+    as the time domain finds them: its torque must match the dynamic one within 1 % (measured 0.04 %
+    and 0.15 %). A rigid cage (friction.cage_guidance = rigid) holds every roller at the cage speed
+    at its azimuth and so carries each roller's net tangential traction, which under a radial load
+    changes sign around the bearing; in the time domain a roller moves within its pocket play and
+    touches its pockets far more lightly (README, dynamic solver). So against the rigid cage the
+    torque without the cage component must agree within 1 %, and the dynamic cage component must
+    not exceed the rigid one."""
     summary, qs, integ = steady_run(overrides)
-    free = sim.simulate(sim.load_config(overrides + ["friction.cage_guidance=free"])).isel(design=0, case=0)
-    assert bool(free.converged)
-    assert abs(summary["torque"] / float(free.torque) - 1.0) < 0.01
+    rigid = sim.simulate(sim.load_config(overrides + ["friction.cage_guidance=rigid"])).isel(design=0, case=0)
+    assert bool(rigid.converged)
     Q = qs["Q"]
     assert Q.min() < 0.7 * Q.max(), "the radial load must make the load distribution non-uniform"
     err_Q = np.abs(summary["Q"] - Q).max() / Q.max()
     err_T = abs(summary["torque"] / qs["torque"] - 1.0)
-    cage_d, cage_q = summary["torque_component"][CAGE], qs["torque_component"][CAGE]
-    rest = (summary["torque"] - cage_d) / (qs["torque"] - cage_q) - 1.0
+    cage_d, cage_r = summary["torque_component"][CAGE], float(rigid.torque_component[CAGE])
+    rest = (summary["torque"] - cage_d) / (float(rigid.torque) - cage_r) - 1.0
     err_c = abs(summary["cage_speed"] / qs["cage_speed"] - 1.0)
-    print(f"{overrides[0]}: loads {err_Q:.2e}, torque {err_T:.2e}, without the cage {rest:.2e}, cage pocket friction "
-          f"{cage_d:.2f} vs {cage_q:.2f} N mm, cage speed {err_c:.2e}, {integ.windows} windows")
+    print(f"{overrides[0]}: loads {err_Q:.2e}, torque {err_T:.2e}, without the cage against the rigid cage "
+          f"{rest:.2e}, cage pocket friction {cage_d:.2f} vs {cage_r:.2f} N mm (rigid), cage speed {err_c:.2e}, "
+          f"{integ.windows} windows")
     assert err_Q < 0.01
-    assert err_T < 0.03
+    assert err_T < 0.01
     assert abs(rest) < 0.01
-    assert cage_d <= cage_q
+    assert cage_d <= cage_r
     assert err_c < 0.005
 
 
@@ -400,3 +400,16 @@ def test_the_rib_held_skew_is_overdamped_and_creeps_at_the_traction_rate():
     print(f"time to half the skew {psi_eq:.3e} rad: predicted {t_half * 1e3:.3f} ms, run {t_run * 1e3:.3f} ms")
     assert abs(t_run / t_half - 1.0) < 0.10
     assert np.all(np.diff(s) >= 0.0) and s.max() <= psi_eq
+
+
+def test_a_rib_touched_after_the_film_was_taken_carries_no_traction_and_no_error():
+    """The film is held over a window (refreshed between windows), so a roller can touch its rib
+    while its film has no rib contact (film.prib 0). TRB 31313 at 32 / 48 kN, 3821 rpm: at the
+    start state a roller outside the quasi-static load zone does so, and the rib traction divided
+    by the film's zero rib pressure (ZeroDivisionError in the right-hand side, before anything
+    ran). Such a rib now carries no traction until the next film, as an unloaded strip of the
+    slices: the right-hand side at the start state is finite."""
+    _, _, _, _, dc = dynamic_case(["bearing=trb_31313", "load.Fa=32058", "load.Fr=48018", "load.speed=3821",
+                                   "load.oil_temperature=47"])
+    dy = Integration(dc.problem, None).f(0.0, dc.y0)
+    assert np.isfinite(dy).all()

@@ -61,7 +61,7 @@ def test_with_rolling_kinematics_the_torque_is_the_power_over_the_speed(bearing)
     The friction torque of imposed speeds is the energy balance's, power loss / inner-ring speed
     (as at speed 0): exact by construction (rtol 1e-12, round-off), positive, each component a
     dissipation (>= 0), and the breakdown sums to it."""
-    case = run(bearing, "load.Fr=2000", "friction.kinematics=rolling")
+    case = run(bearing, "load.Fr=2000", "friction.kinematics=rolling", "friction.cage_guidance=rigid")
     omega_i = np.pi * float(case.speed) / 30.0
     assert float(case.torque) > 0.0
     np.testing.assert_allclose(float(case.torque), float(case.power_loss) * 1e3 / omega_i, rtol=1e-12)
@@ -135,7 +135,7 @@ def test_rollers_free_in_their_pockets_keep_the_energy_balance_and_pay_no_pocket
     bound 4x that; the sliding, near 0,
     within 1e-3 of the torque), and the outer-ring torque equals power loss / speed within 1e-3,
     as for the rigid cage (test_outer_ring_torque_equals_power_over_speed)."""
-    rigid = run(bearing, *overrides)
+    rigid = run(bearing, *overrides, "friction.cage_guidance=rigid")
     free = run(bearing, *overrides, "friction.cage_guidance=free")
     cage = list(rigid.component.values).index("cage")
     assert float(free.torque_component[cage]) == 0.0 < float(rigid.torque_component[cage])
@@ -351,10 +351,11 @@ def test_alpha_up_torque_reduction_of_thesis_7_2(scenario):
 
 def test_cage_pocket_friction_enters_the_load_distribution():
     """The cage pocket friction force acts on the roller in its meridian plane (along v') and the
-    quasi-static balance takes it back (issue: friction forces enter the force balance). With no
+    quasi-static balance takes it back (issue: friction forces enter the force balance), with the
+    cage rigid (friction.cage_guidance = rigid: the free rollers carry no pocket force). With no
     pocket friction the roller loads are those of the frictionless balance; with it they change,
     while the bearing still balances Fa and the energy balance still holds."""
-    base = ["bearing=trb_32208", "load.Fr=4000"]
+    base = ["bearing=trb_32208", "load.Fr=4000", "friction.cage_guidance=rigid"]
     free = sim.simulate(sim.load_config(base + ["friction.cage_friction_coefficient=0"])).isel(design=0, case=0)
     rough = sim.simulate(sim.load_config(base + ["friction.cage_friction_coefficient=0.3"])).isel(design=0, case=0)
     plain = sim.simulate(sim.load_config(base + ["friction.enabled=false"])).isel(design=0, case=0)
