@@ -17,7 +17,7 @@ from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import copy_vector, solve_dense
 from sim._math.roots import root_search, root_search_step
 from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, NO_RATES, cage_pocket_loads, friction_loads,
-                                  lubrication_state, pocket_skew_couple, roller_drag, roller_friction, roller_traction)
+                                  lubrication_state, pocket_skew_couple, roller_friction)
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
 # friction moments about the skew axis S (Z,), cage z-moments per roller T (Z,)) with respect to
@@ -575,36 +575,41 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
 @internal_kernel
 def _free_roller_residuals(j, x, wi, case, ev, r):
     """Residuals of roller j free in its pocket at x = (omega_R, orbit speed[, psi]) [rad/s, rad]:
-    r = (moment about its axis, z-moment of its contacts and drag[, moment about the skew axis with
-    the pocket's skew couple]) [N mm]; ``ev`` holds the roller's evaluation there (no pocket force:
-    no pocket friction)."""
+    r = (moment about its axis, z-moment of its contacts and drag about the bearing axis[, moment
+    about the skew axis with the pocket's skew couple]) [N mm]; ``ev`` holds the roller's evaluation
+    there (:func:`roller_friction` at its own orbit speed). Returns the pocket friction force along
+    v' [N]: the pocket pushes the roller with the tangential force that the z-moment balance leaves
+    to its centre, F_D - F_t = M_z / r_c (M_z the contacts' moments about the roller centre, along
+    e_z: the skew couple's, or the planar model's unbalanced skew moment; zero for a roller on its
+    own without them), as in the time domain, where the cage takes the couples' z-reactions through
+    the pockets (free_roller_speeds)."""
     psi = x[2] if x.shape[0] > 2 else 0.0
-    roller_traction(j, x[0], psi, NO_RATES, x[1], wi, case, ev)
-    roller_drag(x[1], case.frames.Cen[j, 0], case.par, ev)
+    F_pocket = roller_friction(j, x[0], psi, x[1], wi, case, ev)
     r[0] = ev[EV_MU]
     r[1] = ev[EV_TZ]
     if x.shape[0] > 2:
         r[2] = ev[EV_MS] + pocket_skew_couple(psi, case.par)[0]
+    return F_pocket
 
 
 @internal_kernel
 def _free_roller(j, x, wi, case, ev, tol, max_iter):
     """Newton (forward-difference Jacobian, backtracking on the residual scaled by ``tol``) on the
-    residuals of :func:`_free_roller_residuals` from x (written); returns converged, with ``ev``
-    the roller's evaluation at the returned x."""
+    residuals of :func:`_free_roller_residuals` from x (written); returns (converged, the pocket
+    friction force along v' [N]), with ``ev`` the roller's evaluation at the returned x."""
     m = x.shape[0]
     r = np.empty(m)
     rt = np.empty(m)
     xt = np.empty(m)
     J = np.empty((m, m))
     R = np.empty((m, 1))
-    _free_roller_residuals(j, x, wi, case, ev, r)
+    F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)
     norm = 0.0
     for a in range(m):
         norm += (r[a] / tol[a]) ** 2
     for _ in range(max_iter):
         if norm <= 1.0:
-            return True
+            return True, F_pocket
         for b in range(m):
             h = FD_STEP * (max(abs(x[2]), case.par.skew_clearance) if b == 2 else abs(x[b]))
             copy_vector(xt, x)
@@ -616,14 +621,15 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter):
             R[a, 0] = -r[a]
         dx = solve_dense(J, R)
         if not np.all(np.isfinite(dx)):
-            _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the difference points
-            return False
+            F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the difference points
+            return False, F_pocket
         step = 1.0
         accepted = False
+        trial_pocket = 0.0
         for _ in range(MAX_HALVINGS):
             for a in range(m):
                 xt[a] = x[a] + step * dx[a, 0]
-            _free_roller_residuals(j, xt, wi, case, ev, rt)
+            trial_pocket = _free_roller_residuals(j, xt, wi, case, ev, rt)
             trial = 0.0
             for a in range(m):
                 trial += (rt[a] / tol[a]) ** 2
@@ -632,24 +638,28 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter):
                 break
             step *= 0.5
         if not accepted:
-            _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the rejected trials
-            return False
+            F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the rejected trials
+            return False, F_pocket
         copy_vector(x, xt)
         copy_vector(r, rt)
         norm = trial
-    return norm <= 1.0
+        F_pocket = trial_pocket
+    return norm <= 1.0, F_pocket
 
 
 @kernel
 def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
     """Rollers free in their cage pockets (``friction.cage_guidance = free``): from the rigid-cage
     solution (cage speed wc [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
-    each loaded roller's own orbit speed and spin speed (and skew) with no pocket force: zero
-    moment about its axis and zero z-moment of its contacts and drag about the bearing axis (the
-    time-domain model's orbit coordinate, sim.solvers.dynamic; and zero moment about its skew axis
-    with the pocket's couple), each roller on its own (conf/friction/default.yaml, README "Radial
-    loads"). Writes wR, psi, ``totals`` (NEV,) (weighted sums of the roller evaluations, no pocket friction) and ``loads``
-    (Z, NFL) (friction loads: no pocket friction force; with skew the lateral tractions). Tolerances:
+    each loaded roller's own orbit speed and spin speed (and skew): zero moment about its axis and
+    zero z-moment of its contacts and drag about the bearing axis (the time-domain model's orbit
+    coordinate, sim.solvers.dynamic; and zero moment about its skew axis with the pocket's couple),
+    each roller on its own (conf/friction/default.yaml, README "Radial loads"). The pocket then
+    carries no net traction, only the z-reaction of the moments about the roller centre
+    (:func:`_free_roller_residuals`), with its friction; under a pure axial load, where the rigid
+    cage's balance is every roller's own, the two guidances coincide. Writes wR, psi, ``totals``
+    (NEV,) (weighted sums of the roller evaluations) and ``loads`` (Z, NFL) (friction loads: the
+    pocket friction force; with skew the lateral tractions). Tolerances:
     FINAL_TOLERANCE_FACTOR x settings.tol_M on the moments, and on the z-moment x tol_T over the
     number of rollers. Returns converged (every roller)."""
     Z = wR.shape[0]
@@ -674,7 +684,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
         x[1] = wc
         if skew:
             x[2] = psi[j]
-        ok = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
+        ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
         side = -1.0 if psi[j] < 0.0 else 1.0
         for start in range(2 if skew and not ok else 0):
             # the pocket's skew couple has a kink at |psi| = clearance; where the friction skew moment
@@ -684,7 +694,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
             x[0] = wR[j]
             x[1] = wc
             x[2] = side * FREE_SKEW_WALL_START * case.par.skew_clearance
-            ok = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
+            ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
             if ok:
                 break
             side = -side
@@ -692,7 +702,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
         wR[j] = x[0]
         if skew:
             psi[j] = x[2]
-        friction_loads(ev, 0.0, loads[j])         # ev: the evaluation at x (_free_roller)
+        friction_loads(ev, F_pocket, loads[j])    # ev: the evaluation at x (_free_roller)
         for i in range(NEV):
             totals[i] += settings.weight[j] * ev[i]
     return converged

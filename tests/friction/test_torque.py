@@ -126,24 +126,47 @@ def test_a_roller_that_stops_rolling_on_a_ring_has_a_speed_balance():
                    "load.oil_temperature=50", "friction.skew.enabled=true"]),
     ("tsrb_prototype", ["load.Fa=3300", "load.Fr=3000"]),
 ])
-def test_rollers_free_in_their_pockets_keep_the_energy_balance_and_pay_no_pocket_friction(bearing, overrides):
-    """friction.cage_guidance = free: each loaded roller orbits at its own speed, its contacts'
-    z-moment about the bearing axis balanced without a pocket force (and with skew its skew moment
-    by the pocket's couple). Then the cage pocket friction is 0, every other mechanism stays
-    within 0.5 % of the rigid cage's (the speeds move by the roller's own slip only: measured at
-    most 0.12 % (the skewed TRB 31313's rib; rolling, hysteresis and drilling 0.05 % at most), the
-    bound 4x that; the sliding, near 0,
-    within 1e-3 of the torque), and the outer-ring torque equals power loss / speed within 1e-3,
-    as for the rigid cage (test_outer_ring_torque_equals_power_over_speed)."""
+def test_rollers_free_in_their_pockets_keep_the_energy_balance_and_pay_less_pocket_friction(bearing, overrides):
+    """friction.cage_guidance = free (the default): each loaded roller orbits at its own speed, its
+    contacts' z-moment about the bearing axis balanced on its own (and with skew its skew moment by
+    the pocket's couple); its pocket carries no net traction, only the z-reaction of the moments
+    about its centre. Under these radial loads the cage pocket friction is then below the rigid
+    cage's (measured 0.35 / 0.002 / 0.99 N mm against 11.0 / 143.5 / 1.38 for the three cases: the
+    prototype's rigid cage carries little net traction), every other mechanism stays within 0.5 % of the rigid
+    cage's (the speeds move by the roller's own slip only: measured at most 0.12 % (the skewed
+    TRB 31313's rib; rolling, hysteresis and drilling 0.05 % at most), the bound 4x that; the
+    sliding, near 0, within 1e-3 of the torque), and the outer-ring torque equals power loss /
+    speed within 1e-3, as for the rigid cage (test_outer_ring_torque_equals_power_over_speed)."""
     rigid = run(bearing, *overrides, "friction.cage_guidance=rigid")
     free = run(bearing, *overrides, "friction.cage_guidance=free")
     cage = list(rigid.component.values).index("cage")
-    assert float(free.torque_component[cage]) == 0.0 < float(rigid.torque_component[cage])
+    assert 0.0 <= float(free.torque_component[cage]) < float(rigid.torque_component[cage])
     others = [k for k in range(rigid.component.size) if k != cage]
     np.testing.assert_allclose(free.torque_component.values[others], rigid.torque_component.values[others],
                                rtol=5e-3, atol=1e-3 * float(rigid.torque))
     omega_i = np.pi * float(free.speed) / 30.0
     assert abs(float(free.torque) - float(free.power_loss) * 1e3 / omega_i) <= 1e-3 * float(free.torque)
+
+
+@pytest.mark.parametrize("bearing,overrides", [
+    ("trb_32208", ["load.Fa=40000", "load.Fr=0"]),
+    ("tsrb_pinion", ["load.Fa=35000", "load.Fr=0", "load.speed=1100", "lubricant=pinion_oil",
+                     "load.oil_temperature=50", "friction.skew.enabled=true"]),
+], ids=["trb_32208", "tsrb_pinion skewed"])
+def test_under_a_pure_axial_load_free_and_rigid_guidance_coincide(bearing, overrides):
+    """Under a pure axial load every roller is loaded alike, so the rigid cage's balance (the sum of
+    the rollers' z-moments) is each roller's own, the free rollers' condition: the two guidances
+    give the same speeds, pocket forces and torque: bit-identical without skew (the rigid solution
+    already meets each roller's balance), within 4e-7 with the rollers skewed onto their pockets
+    (whose couples' z-reactions the pockets carry), where the free rollers are solved again to
+    the final kinematic tolerance (FINAL_TOLERANCE_FACTOR x friction.tolerance, 1e-7 of mu Q Dwe/2:
+    bound 1e-6)."""
+    rigid = run(bearing, *overrides, "friction.cage_guidance=rigid")
+    free = run(bearing, *overrides, "friction.cage_guidance=free")
+    np.testing.assert_allclose(free.torque_component.values, rigid.torque_component.values, rtol=1e-6,
+                               atol=1e-9 * float(rigid.torque))
+    assert float(free.torque_component.sel(component="cage")) > 0.0
+    np.testing.assert_allclose(free.Q.values, rigid.Q.values, rtol=1e-6)
 
 
 def test_cage_speed_follows_rolling_kinematics_under_load():

@@ -118,7 +118,7 @@ def test_small_speeds_approach_the_breakaway_torque():
     (measured 1e-5). The breakaway torque holds the rollers at rolling kinematics, a rigid cage
     that carries their net traction (its pocket friction is in it), so the slow case is solved
     with the rigid cage too; with the rollers free in their pockets (the default guidance) the
-    slow torque is that less the pocket friction (810.0 against 817.3 N mm)."""
+    slow torque is that less the pocket friction (810.1 against 817.3 N mm)."""
     static = _one(_sim("load.speed=0"), "torque")
     slow = _sim("load.speed=1e-4", "friction.solid_slip_velocity=1e-12", "friction.cage_guidance=rigid")
     assert _one(slow, "converged")
