@@ -388,7 +388,7 @@ def test_free_rollers_find_the_pocket_wall_across_the_couples_kink():
     the Newton from the rigid skew stepped across the couple's kink at -clearance, where no
     backtracking lowers the residual, and the case did not converge. Restarted on each wall
     (sim.solvers.kinematics.FREE_SKEW_WALL_START) every roller rests on the positive wall, as the
-    dynamic solver finds them (every roller at +0.506 deg, torque 844.4 N mm against 849.1 here,
+    dynamic solver finds them (every roller at +0.506 deg, torque 844.0 N mm against 849.4 here,
     README "Radial loads"), and torque = power loss / speed holds within 1e-3 (as for the rigid
     cage: test_rollers_free_in_their_pockets_keep_the_energy_balance_and_pay_no_pocket_friction)."""
     overrides = ["bearing=tsrb_reference", "load.Fa=1257", "load.Fr=1181", "load.speed=6386",
