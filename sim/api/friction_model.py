@@ -234,7 +234,7 @@ class FrictionModel:
             # each loaded roller at its own orbit speed, no pocket force (friction.cage_guidance); the
             # cage speed stays that of the rigid balance (the dynamic solver's cage speed agrees with it
             # within 7e-4 under radial loads; the loaded rollers' mean orbit speed deviates by up to 1 %)
-            converged = free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads)
+            converged = free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, pb.jac)
         # Gupta's inlet-heating factor is floored at 0 where its pressure term outgrows 1, far beyond its
         # fitted range (thermal loading L of several hundred: FVA 3 below about -30 degC): no film and no
         # rolling loss there is no result, so the case counts as not converged rather than report that torque

@@ -593,62 +593,95 @@ def _free_roller_residuals(j, x, wi, case, ev, r):
 
 
 @internal_kernel
-def _free_roller(j, x, wi, case, ev, tol, max_iter):
-    """Newton (forward-difference Jacobian, backtracking on the residual scaled by ``tol``) on the
-    residuals of :func:`_free_roller_residuals` from x (written); returns (converged, the pocket
+def _free_roller(j, x, wi, case, ev, tol, max_iter, J, chord):
+    """Newton on the residuals of :func:`_free_roller_residuals` from x (written), scaled by
+    ``tol``: a step from a Jacobian built here (forward differences) backtracks until the residual
+    norm falls; a step from a Jacobian of an earlier point (``J`` in, with ``chord``: the rigid
+    solve's, or this solve's previous one) is kept only where it cuts the squared norm to
+    CHORD_CONTRACTION of its value, else the Jacobian is rebuilt at the same point (the chord and
+    Shamanskii methods, as :func:`solve_kinematics_newton`). Returns (converged, the pocket
     friction force along v' [N]), with ``ev`` the roller's evaluation at the returned x."""
     m = x.shape[0]
     r = np.empty(m)
     rt = np.empty(m)
     xt = np.empty(m)
-    J = np.empty((m, m))
     R = np.empty((m, 1))
     F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)
     norm = 0.0
     for a in range(m):
         norm += (r[a] / tol[a]) ** 2
+    have = chord          # J holds a Jacobian
+    fresh = False         # ... built at the present x
     for _ in range(max_iter):
         if norm <= 1.0:
             return True, F_pocket
-        for b in range(m):
-            h = FD_STEP * (max(abs(x[2]), case.par.skew_clearance) if b == 2 else abs(x[b]))
-            copy_vector(xt, x)
-            xt[b] += h
-            _free_roller_residuals(j, xt, wi, case, ev, rt)
-            for a in range(m):
-                J[a, b] = (rt[a] - r[a]) / h
+        if not have:
+            for b in range(m):
+                h = FD_STEP * (max(abs(x[2]), case.par.skew_clearance) if b == 2 else abs(x[b]))
+                copy_vector(xt, x)
+                xt[b] += h
+                _free_roller_residuals(j, xt, wi, case, ev, rt)
+                for a in range(m):
+                    J[a, b] = (rt[a] - r[a]) / h
+            have = True
+            fresh = True
         for a in range(m):
             R[a, 0] = -r[a]
         dx = solve_dense(J, R)
         if not np.all(np.isfinite(dx)):
+            if not fresh:
+                have = False
+                continue
             F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the difference points
             return False, F_pocket
         step = 1.0
         accepted = False
+        trial = norm
         trial_pocket = 0.0
-        for _ in range(MAX_HALVINGS):
+        for _ in range(MAX_HALVINGS if fresh else 1):
             for a in range(m):
                 xt[a] = x[a] + step * dx[a, 0]
             trial_pocket = _free_roller_residuals(j, xt, wi, case, ev, rt)
             trial = 0.0
             for a in range(m):
                 trial += (rt[a] / tol[a]) ** 2
-            if trial < norm:
+            if trial < (norm if fresh else CHORD_CONTRACTION * norm):
                 accepted = True
                 break
             step *= 0.5
         if not accepted:
+            if not fresh:
+                have = False        # rebuild at x (ev is rebuilt with it)
+                continue
             F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the rejected trials
             return False, F_pocket
         copy_vector(x, xt)
         copy_vector(r, rt)
         norm = trial
         F_pocket = trial_pocket
+        fresh = False
     return norm <= 1.0, F_pocket
 
 
+@internal_kernel
+def _free_roller_jacobian(jac, j, weight, psi, par, J):
+    """The free roller j's Jacobian in x = (omega_R, orbit speed[, psi]) from the rigid solve's
+    (:data:`KinematicJacobian`, of its last Jacobian point): the same residuals M_j, T_j / weight,
+    S_j + pocket couple, the orbit speed in the place of the cage speed, written to J."""
+    J[0, 0] = jac.dMdw[j]
+    J[0, 1] = jac.dMdc[j]
+    J[1, 0] = jac.dTdw[j] / weight
+    J[1, 1] = jac.dTdc[j] / weight
+    if J.shape[0] > 2:
+        J[0, 2] = jac.dMdp[j]
+        J[1, 2] = jac.dTdp[j] / weight
+        J[2, 0] = jac.dSdw[j]
+        J[2, 1] = jac.dSdc[j]
+        J[2, 2] = jac.dSdp[j] + pocket_skew_couple(psi, par)[1]
+
+
 @kernel
-def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
+def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, jac):
     """Rollers free in their cage pockets (``friction.cage_guidance = free``): from the rigid-cage
     solution (cage speed wc [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
     each loaded roller's own orbit speed and spin speed (and skew): zero moment about its axis and
@@ -659,9 +692,10 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
     (:func:`_free_roller_residuals`), with its friction; under a pure axial load, where the rigid
     cage's balance is every roller's own, the two guidances coincide. Writes wR, psi, ``totals``
     (NEV,) (weighted sums of the roller evaluations) and ``loads`` (Z, NFL) (friction loads: the
-    pocket friction force; with skew the lateral tractions). Tolerances:
-    FINAL_TOLERANCE_FACTOR x settings.tol_M on the moments, and on the z-moment x tol_T over the
-    number of rollers. Returns converged (every roller)."""
+    pocket friction force; with skew the lateral tractions). ``jac``: the rigid solve's
+    :data:`KinematicJacobian`, whose entries of roller j start its solve as a chord (where it holds
+    one). Tolerances: FINAL_TOLERANCE_FACTOR x settings.tol_M on the moments, and on the z-moment x
+    tol_T over the number of rollers. Returns converged (every roller)."""
     Z = wR.shape[0]
     skew = case.par.skew
     m = 3 if skew else 2
@@ -672,6 +706,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
     if skew:
         tol[2] = tol[0]
     ev = np.empty(NEV)
+    J = np.empty((m, m))
     converged = True
     for i in range(NEV):
         totals[i] = 0.0
@@ -684,7 +719,10 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
         x[1] = wc
         if skew:
             x[2] = psi[j]
-        ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
+        chord = jac.known[0]
+        if chord:
+            _free_roller_jacobian(jac, j, settings.weight[j], psi[j], case.par, J)
+        ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter, J, chord)
         side = -1.0 if psi[j] < 0.0 else 1.0
         for start in range(2 if skew and not ok else 0):
             # the pocket's skew couple has a kink at |psi| = clearance; where the friction skew moment
@@ -694,7 +732,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads):
             x[0] = wR[j]
             x[1] = wc
             x[2] = side * FREE_SKEW_WALL_START * case.par.skew_clearance
-            ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter)
+            ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter, J, False)
             if ok:
                 break
             side = -side
