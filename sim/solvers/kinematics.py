@@ -16,7 +16,7 @@ import numpy as np
 from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import copy_vector, solve_dense
 from sim._math.roots import root_search, root_search_step
-from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, NO_RATES, cage_pocket_loads, friction_loads,
+from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, cage_pocket_loads, friction_loads,
                                   lubrication_state, pocket_skew_couple, roller_friction)
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
