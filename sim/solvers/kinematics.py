@@ -694,15 +694,18 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, jac):
     (NEV,) (weighted sums of the roller evaluations) and ``loads`` (Z, NFL) (friction loads: the
     pocket friction force; with skew the lateral tractions). ``jac``: the rigid solve's
     :data:`KinematicJacobian`, whose entries of roller j start its solve as a chord (where it holds
-    one). Tolerances: FINAL_TOLERANCE_FACTOR x settings.tol_M on the moments, and on the z-moment x
-    tol_T over the number of rollers. Returns converged (every roller)."""
+    one). Tolerances as the rigid solve's last pass (:func:`solve_friction`): FINAL_TOLERANCE_FACTOR
+    (an iterate of the load coupling, not ``settings.final``: ``settings.seed_factor``) x
+    settings.tol_M on the moments, and on the z-moment x tol_T over the number of rollers. Returns
+    converged (every roller)."""
     Z = wR.shape[0]
     skew = case.par.skew
     m = 3 if skew else 2
     x = np.empty(m)
     tol = np.empty(m)
-    tol[0] = FINAL_TOLERANCE_FACTOR * settings.tol_M
-    tol[1] = FINAL_TOLERANCE_FACTOR * settings.tol_T / max(settings.weight.sum(), 1.0)
+    loose = FINAL_TOLERANCE_FACTOR if settings.final else settings.seed_factor
+    tol[0] = loose * settings.tol_M
+    tol[1] = loose * settings.tol_T / max(settings.weight.sum(), 1.0)
     if skew:
         tol[2] = tol[0]
     ev = np.empty(NEV)
