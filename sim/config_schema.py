@@ -305,6 +305,7 @@ class FrictionConfig:
     traction_law: str = key(Choice(("eyring", "newton_limited")))
     inlet_shear_heating: bool = key(Flag())
     temperature_tolerance: Any = key(Number(0.0, 10.0, low_open=True, units="K"))
+    inner_ring_temperature_rise: Any = key(Number(-50.0, 50.0, units="K"))
     kinematics: str = key(Choice(("rolling", "traction")))
     cage_guidance: str = key(Choice(("free", "rigid")))
     max_iterations: Any = key(Number(1, 10000, integer=True))

@@ -39,7 +39,8 @@ def solver_summary(cfg):
     the Dataset's components, a dict; skew_sliding [N mm], NaN without skew; skew, tilt: the
     largest |roller skew| and |roller tilt| [deg], skew NaN without skew; cage_speed [rpm];
     converged; wall_time [s]) and the Dataset. Of a dynamic run torque, loss_torque, drive_torque,
-    skew and tilt are those of its last window (:func:`last_window`), with or without steady state."""
+    skew and tilt are those of its last window (:func:`last_window`; the torques sample means only
+    without a steady state), drive_torque a sample mean."""
     t0 = time.perf_counter()
     ds = sim.simulate(cfg)
     wall = time.perf_counter() - t0
@@ -59,18 +60,22 @@ def solver_summary(cfg):
     }
     out["drive_torque"] = out["torque"]
     if "time" in c.dims:
-        out.update(last_window(c, int(cfg.solver.dynamic.samples_per_window), wi))
+        window = last_window(c, int(cfg.solver.dynamic.samples_per_window), wi)
+        if out["converged"]:    # the summary's torques are the window's exact means
+            del window["torque"], window["loss_torque"]
+        out.update(window)
     return out, ds
 
 
 def last_window(c, samples, wi):
     """Of a dynamic run's time series ``c`` (one case), over its last window of ``samples``
-    samples: the means of the outer-ring torque, of power loss / inner-ring speed ``wi`` [rad/s] and
-    of the drive torque [N mm], and the largest |mean skew| and |mean tilt| of a roller [deg]. At a
-    steady state the torques are the summary's own (sim.api.dynamic_model.outputs takes the same
-    window; its per-roller skew and tilt are those at one instant of it, the same under a pure
-    axial load); without one, where the summary has no friction outputs, they still say where the
-    run ended."""
+    samples: the sample means of the outer-ring torque, of power loss / inner-ring speed ``wi``
+    [rad/s] and of the drive torque [N mm], and the largest |mean skew| and |mean tilt| of a
+    roller [deg]. At a steady state the summary holds the window's exact torques (quadrature
+    states, sim.solvers.dynamic.window_means; samples at fixed instants can miss short traction
+    peaks) and its per-roller skew and tilt at one instant of it (the same under a pure axial
+    load); without one, where the summary has no friction outputs, these still say where the run
+    ended."""
     last = c.isel(time=slice(-samples, None))
     return {"torque": float(last.torque_t.mean()),
             "loss_torque": float(last.power_loss_t.mean()) / W_PER_N_MM_PER_S / wi,

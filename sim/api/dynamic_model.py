@@ -15,13 +15,12 @@ import numpy as np
 from sim.api.bearing_model import case_results
 from sim.api.friction_model import coupled_solution, film_outputs
 from sim.io import RPM_PER_RAD_S, W_PER_N_MM_PER_S
-from sim.physics.friction import lubrication_state
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
-from sim.solvers.dynamic import (ETA, HR, NCAGE, NRING, NS, PHI, PSI,
-                                 RO_FP, RO_QI, RO_QO, RO_QRIB, RO_WR, THETA, TO_DAMP, TO_P0, TO_PSKEW, TO_TIN,
+from sim.solvers.dynamic import (A_TIN, A_TOUT, ETA, HR, NCAGE, NRING, NS, PHI, PSI,
+                                 RO_FP, RO_QI, RO_QO, RO_QRIB, RO_WR, THETA, TO_DAMP, TO_P0, TO_TIN,
                                  TO_TOUT, WPHI,
                                  XI, DynamicBody, DynamicProblem, DynamicSettings, Integration, roller_axis,
-                                 state_size)
+                                 state_size, window_means)
 
 KG_TO_T = 1e-3              # mass: 1 kg = 1e-3 t (kernel units t, mm, s, N)
 KG_M2_TO_T_MM2 = 1e3        # inertia: 1 kg m^2 = 1e-3 t x 1e6 mm^2
@@ -33,7 +32,7 @@ DynamicCase = namedtuple("DynamicCase", ["problem", "settings", "y0", "quasi_sta
 
 
 def body_and_state(model, friction, op, dyn, raw, kin):
-    """:data:`DynamicBody`, start state and roller speeds [rad/s] of one case (module docstring)."""
+    """:data:`DynamicBody` and start state of one case (module docstring)."""
     g = model.geometry
     a = g.arrays
     Z = g.Z
@@ -75,7 +74,7 @@ def body_and_state(model, friction, op, dyn, raw, kin):
     y0[o_ring] = raw["ring"][0]
     y0[o_ring + 1] = raw["ring"][1]
     y0[o_ring + NRING + 1] = wc
-    return body, y0, wR
+    return body, y0
 
 
 
@@ -97,7 +96,7 @@ def prepare(model, friction, op, dyn):
     g = model.geometry
     raw, fr = quasi_static_start(model, friction, op)
     kin = fr["kinematics"]
-    body, y0, wR = body_and_state(model, friction, op, dyn, raw, kin)
+    body, y0 = body_and_state(model, friction, op, dyn, raw, kin)
     pb = friction.problem(op, raw, start=kin)
     case = pb.case
     # the run updates frames, line loads and rib data in place: its own copies
@@ -106,7 +105,6 @@ def prepare(model, friction, op, dyn):
                                     nrib=case.bearing.nrib.copy(), free=case.bearing.free.copy())
     case = case._replace(frames=frames, bearing=bearing)
     problem = DynamicProblem(model.bearing, model.elasticity, case, body)
-    refresh_film(problem, y0, wR, raw["Q"].sum(axis=1) > 0.0)
     # contact damping: ratio zeta at the roller's normal contact frequency sqrt(k / m), k the
     # exact contact stiffness along v' of the start state; beta = 2 zeta / omega (Rayleigh)
     probe = Integration(problem, None)
@@ -126,7 +124,8 @@ def integration_settings(g, op, body, raw, fr, dyn, omega_n):
     steps): roller and ring positions by the inner ring's axial displacement (the contact
     approach, ~10 um), their rates by that times the contact frequency, angles by it over Lwe,
     orbit and cage angles by 1 rad, speeds by the cage speed, momenta by I_x times the roller
-    speed, energies by the torque times the inner-ring turn of one window. The window is
+    speed, energies by the torque times the inner-ring turn of one window, angular impulses by
+    the torque times the window's duration. The window is
     ``window_revolutions`` inner-ring turns rounded to a whole number of roller passes.
     """
     Z = g.Z
@@ -152,36 +151,25 @@ def integration_settings(g, op, body, raw, fr, dyn, omega_n):
     scale[o_ring + 3:o_ring + 6] = delta * omega_n
     scale[o_ring + NRING] = 1.0
     scale[o_ring + NRING + 1] = wc
-    scale[o_ring + NRING + NCAGE:] = abs(fr["torque"]) * body.wi * window
+    o_q = o_ring + NRING + NCAGE
+    scale[o_q:] = abs(fr["torque"]) * body.wi * window
+    scale[[o_q + A_TOUT, o_q + A_TIN]] = abs(fr["torque"]) * window
     rtol = float(dyn["rtol"])
-    return DynamicSettings(str(dyn["method"]), rtol, rtol * scale, window, int(dyn["samples_per_window"]),
+    return DynamicSettings(str(dyn["method"]), rtol, rtol * scale, window, passes * 2.0 * np.pi / Z,
+                           int(dyn["samples_per_window"]),
                            int(dyn["max_windows"]), float(dyn["steady_tolerance_speed"]),
                            float(dyn["steady_tolerance_torque"]), float(dyn["steady_tolerance_load"]),
                            float(dyn["steady_tolerance_skew"]), scale)
 
 
 def run(dcase):
-    """Integrate a :data:`DynamicCase` (film refreshed before every window at the current
-    loads and speeds): the finished :class:`sim.solvers.dynamic.Integration`."""
-    problem = dcase.problem
-
-    def refresh(y, rol):
-        refresh_film(problem, y, np.ascontiguousarray(rol[:, RO_WR]), (rol[:, RO_QO] + rol[:, RO_QI]) > 0.0)
-
-    return Integration(problem, dcase.settings, refresh).run(dcase.y0)
-
-
-def refresh_film(problem, y, wR, active):
-    """Film of the problem's FrictionCase at the loads and frames it holds, the roller speeds wR
-    (Z,) and the cage speed of y [rad/s] (:func:`sim.physics.friction.lubrication_state`)."""
-    o_cage = problem.bearing.Z * NS + NRING
-    lubrication_state(wR, float(y[o_cage + 1]), problem.body.wi, active, problem.case)
-
+    """Integrate a :data:`DynamicCase`: the finished :class:`sim.solvers.dynamic.Integration`."""
+    return Integration(dcase.problem, dcase.settings).run(dcase.y0)
 
 
 def outputs(model, op, dcase, integ, wall_time, output_cfg):
     """(summary, series): the steady-state summary as :func:`sim.api.bearing_model.case_results`
-    plus the friction outputs (torque, breakdown, power, cage speed: means over the last window;
+    plus the friction outputs (torque, breakdown, power, cage speed: exact means over the last window;
     per-roller loads, poses, skew and tilt: at the instant the rollers pass the quasi-static
     azimuths, roller j at 2 pi j / Z, so that they compare roller by roller with the quasi-static
     solution; output units), and the time series (output units; sim.io.SERIES_VARIABLES), rollers
@@ -233,10 +221,11 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
     summary = case_results(model, op, raw, output_cfg)
     if not integ.steady:
         return summary, series
-    # scalars: the means over the last window (whole roller passes)
-    power = tot[last, TO_P0:TO_DAMP].mean(axis=0)
-    torque = float(tot[last, TO_TOUT].mean())
-    # film outputs at the aligned state, with the film of the last window
+    # scalars: the exact means over the last window (whole roller passes; quadrature states)
+    means = window_means(y[last[0] - 1], y[last[-1]], integ.t[last[-1]] - integ.t[last[0] - 1], Z)
+    power = means.power
+    torque = means.torque
+    # film outputs at the aligned state (its film: Integration._align leaves the problem there)
     srr, film_um, lam = film_outputs(dcase.problem.case, integ.rol_aligned[:, RO_QO] + integ.rol_aligned[:, RO_QI],
                                      float(yl[o_cage + 1]), integ.rol_aligned[:, RO_WR], body.wi)
     summary.update(
@@ -247,8 +236,8 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
         # breakdown in proportion to each mechanism's power (as the quasi-static result)
         torque_component=torque * power / power.sum(),
         power_loss=float(power.sum()) * W_PER_N_MM_PER_S,
-        cage_speed=float(y[last, o_cage + 1].mean()) * RPM_PER_RAD_S,
+        cage_speed=means.cage_speed * RPM_PER_RAD_S,
     )
     if body.skew:   # the lateral-slip part of 'sliding', scaled as the breakdown (FrictionModel.evaluate)
-        summary["skew_sliding"] = torque * float(tot[last, TO_PSKEW].mean()) / power.sum()
+        summary["skew_sliding"] = torque * means.skew_power / power.sum()
     return summary, series

@@ -115,6 +115,7 @@ class FrictionModel:
             # kappa = k / (rho c) [m^2/s] with rho [kg/m^3], c [J/(kg K)]
             kappa_steel = MM2_PER_M2 * k_steel / (float(material["density"]) * float(material["specific_heat"]))
         dT_tol = float(friction["temperature_tolerance"])
+        self.inner_ring_temperature_rise = float(friction["inner_ring_temperature_rise"])     # K
         self.drag_factor = 0.0
         if model == "roller_drag":
             cd = float(drag["drag_coefficient"])
@@ -131,9 +132,10 @@ class FrictionModel:
         skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
         self.pocket_clearance = float(skew["pocket_clearance"])     # mm, the dynamic solver's pocket too
         self.pocket_stiffness = float(skew["pocket_stiffness"])     # N/mm per roller end
-        # the per-case fields (eta0, alpha, Z, rheology.tau_E0, beta, drag_k: oil temperature) are set by evaluate
+        # the per-case fields (eta0, eta0_inner, alpha, Z, rheology.tau_E0, beta, drag_k: oil temperature) are set by
+        # problem()
         self.par = FrictionParams(
-            eta0=np.nan, alpha=np.nan, Z=np.nan,
+            eta0=np.nan, eta0_inner=np.nan, alpha=np.nan, Z=np.nan,
             pv_model=PRESSURE_VISCOSITY_MODELS[lubricant.pressure_viscosity_model], beta=np.nan,
             traction_law=TRACTION_LAWS[str(friction["traction_law"])],
             rheology=FilmRheology(tau_E0=np.nan,
@@ -159,8 +161,10 @@ class FrictionModel:
         Z, n = g.Z, g.n_slices
         eta0 = float(self.lubricant.dynamic_viscosity(op.oil_temperature)) * MPA_S_PER_PA_S
         alpha = float(self.lubricant.pressure_viscosity_at(op.oil_temperature))
+        eta0_inner = float(self.lubricant.dynamic_viscosity(op.oil_temperature + self.inner_ring_temperature_rise)) \
+            * MPA_S_PER_PA_S
         par = self.par._replace(
-            eta0=eta0, alpha=alpha, Z=float(roelands_index(eta0, alpha)),
+            eta0=eta0, eta0_inner=eta0_inner, alpha=alpha, Z=float(roelands_index(eta0, alpha)),
             rheology=self.par.rheology._replace(tau_E0=float(self.lubricant.eyring_stress_at(op.oil_temperature))),
             beta=float(self.lubricant.temperature_viscosity_coefficient(op.oil_temperature)),
             drag_k=self.drag_factor * float(self.lubricant.density(op.oil_temperature)))

@@ -205,7 +205,8 @@ NO_RATES = RollerRates(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 # Friction parameters of one case (numba-supported named tuple; built by
 # sim.api.friction_model.FrictionModel from the config, the per-case fields with ``_replace``).
 FrictionParams = namedtuple("FrictionParams", [
-    "eta0",         # MPa s, ambient-pressure viscosity at the oil temperature (per case)
+    "eta0",         # MPa s, ambient-pressure viscosity at the oil temperature (per case): the outer ring's contacts
+    "eta0_inner",   # MPa s, the same at the inner ring's temperature (its raceway and rib; per case)
     "alpha",        # 1/MPa, Barus pressure-viscosity coefficient
     "Z",            # 1, Roelands pressure-viscosity index at the oil temperature (per case)
     "pv_model",     # int, pressure-viscosity law: sim.physics.ehl.PV_BARUS or PV_ROELANDS
@@ -297,6 +298,9 @@ FilmState = namedtuple("FilmState", [
     "prib",         # (Z,) rib Hertz mean pressure [MPa]
     "Etarib",       # (Z,) rib film viscosity at that pressure [MPa s]
 ])
+# Scratch arrays of :func:`roller_lubrication`: width-point data (NWP, len(quad.wq)), loaded
+# lengths (n,) [mm] and loaded flags (n,) of one strip row.
+FilmScratch = namedtuple("FilmScratch", ["pts", "lengths", "loaded"])
 
 # Gauss-Legendre rule across a contact's width (:func:`width_quadrature`): weights wq of the nodes
 # t in (0, pi/2) of y = b sin(t), with cos(t) and sin(t) at the nodes (the kernels read only
@@ -363,16 +367,17 @@ def _width_points(p0k, bk, par, quad, pts):
 
 
 @internal_kernel
-def _heat_flux(theta, hk, phik, npts, q_sol, par, pts):
+def _heat_flux(theta, eta0, hk, phik, npts, q_sol, par, pts):
     """Mean frictional heat flux of a contact [N/(mm s)]: (lubricant film, total).
 
     Line slice: traction (5.17) at the Hertz pressure p0 cos(t) and the sliding speed
     sqrt(st^2 + (y ws)^2), y = b sin(t), averaged over the width as in :func:`roller_friction`;
     point contact (the rib): at the mean pressure and the speed |st|; the ``npts`` points of
     ``pts`` (:func:`_viscosity_factor_at` fills them). ``theta`` scales the ambient viscosity
-    (thermal reduction); ``q_sol``: the solid part of the heat, which does not depend on it.
+    (thermal reduction) ``eta0`` [MPa s]; ``q_sol``: the solid part of the heat, which does not
+    depend on it.
     """
-    eta = par.eta0 * theta
+    eta = eta0 * theta
     log_ratio = viscosity_log_ratio(eta, par.pv_model)
     q_tot = 0.0
     for i in range(npts):
@@ -390,8 +395,10 @@ def _heat_flux(theta, hk, phik, npts, q_sol, par, pts):
 # p0, Hertz pressure (line slice) or mean pressure (point contact) [MPa]; b, Hertz half-width of a
 # line slice [mm] (0 for the point contact of the rib); h, film [mm]; phi, solid load share [1]; ws,
 # spin about the contact normal [rad/s]; half_length, half length of the contact along the rolling
-# direction [mm]; U1, U2, surface speeds of roller and ring [mm/s] (sliding speed U1 - U2).
-HeatedContact = namedtuple("HeatedContact", ["p0", "b", "h", "phi", "ws", "half_length", "U1", "U2"])
+# direction [mm]; U1, U2, surface speeds of roller and ring [mm/s] (sliding speed U1 - U2); eta0,
+# ambient-pressure viscosity of the oil at the contact's ring [MPa s] (FrictionParams.eta0,
+# eta0_inner).
+HeatedContact = namedtuple("HeatedContact", ["p0", "b", "h", "phi", "ws", "half_length", "U1", "U2", "eta0"])
 
 
 @kernel
@@ -444,7 +451,7 @@ def _viscosity_factor_at(contact, par, quad, npts, pts):
         q_sol += weight * phik * par.solid.mu_s * p * v * np.tanh(v / par.solid.v_s)
 
     def rise(dT):
-        q_film, q_tot = _heat_flux(np.exp(-beta * dT), hk, phik, npts, q_sol, par, pts)
+        q_film, q_tot = _heat_flux(np.exp(-beta * dT), contact.eta0, hk, phik, npts, q_sol, par, pts)
         return (film_temperature_rise(q_film, hk, par.k_oil)
                 + flash_temperature_rise(q_tot, half_length, U1, U2, par.k_steel, par.kappa_steel))
 
@@ -475,123 +482,137 @@ def lubrication_state(wR, wc, wi, active, case):
         written: film viscosity ``Eta`` at the pressure p0 cos(t) of each width point after the
         thermal reduction, fixed while the kinematics are solved.
     """
+    n = case.bearing.q.shape[2]
+    scratch = film_scratch(n, case.quad.wq.shape[0])
+    for j in range(case.bearing.q.shape[0]):
+        if active[j]:
+            roller_lubrication(j, wR[j], wc, wi, case, scratch)
+
+
+@kernel
+def film_scratch(n, nq):
+    """:data:`FilmScratch` for n slices and nq width points."""
+    return FilmScratch(np.empty((NWP, nq)), np.empty(n), np.empty(n, dtype=np.bool_))
+
+
+@kernel
+def roller_lubrication(j, wR, wc, wi, case, scratch):
+    """Film of roller j (the part of :func:`lubrication_state` of one roller) at its speed wR
+    and orbit speed wc [rad/s], from its line loads, rib load and frames in ``case``: writes
+    ``case.film`` for roller j. The time-domain solver calls it at every right-hand side, so
+    that the film follows each roller's load around the bearing."""
     X, Nrm, Cen, Ax, Xrib = case.frames
     brg, film, par, quad = case.bearing, case.film, case.par, case.quad
     q, Qrib, R_eq, w, E_star = brg.q, brg.Qrib, brg.R_eq, brg.w, brg.E_star
     h, Phi, Fh, Fy, p0, b, Eta = film.h, film.Phi, film.Fh, film.Fy, film.p0, film.b, film.Eta
-    Z = q.shape[0]
     n = q.shape[2]
     Ep = 2.0 * E_star                  # E' of the EHL film formulas [MPa]
-    pts = np.empty((NWP, quad.wq.shape[0]))
-    lengths = np.empty(n)
-    loaded = np.empty(n, dtype=np.bool_)
-    for j in range(Z):
-        if not active[j]:
-            continue
-        cr = Cen[j, 0]
-        cz = Cen[j, 1]
-        ur = Ax[j, 0]
-        uz = Ax[j, 1]
-        for s in range(2):
-            Om = -wc if s == 0 else wi - wc
-            # EHL rolling force of the strips: per unit length at the contact's mean line load
-            # (it hardly depends on the load: W^0.0126, rolling_force_hydrodynamic) over the
-            # loaded length of each strip (contact ends between slice centres,
-            # sim.physics.elasticity.loaded_lengths), so the loss is continuous where a slice
-            # enters or leaves contact, as the contact length is
-            Qs = 0.0
-            for k in range(n):
-                loaded[k] = q[j, s, k] > 0.0
-                Qs += w * q[j, s, k]
-            loaded_lengths(brg.free[j, s], loaded, w, brg.end_drop[s], lengths)
-            Ls = lengths.sum()
-            q_mean = Qs / Ls if Ls > 0.0 else 0.0
-            for k in range(n):
-                qk = q[j, s, k]
-                h[j, s, k] = 0.0
-                Phi[j, s, k] = 0.0
-                Fh[j, s, k] = 0.0
-                Fy[j, s, k] = 0.0
-                p0[j, s, k] = 0.0
-                b[j, s, k] = 0.0
-                if qk <= 0.0 and (lengths[k] <= 0.0 or par.boundary_only):
-                    continue
-                v1, v2 = _surface_speeds(wR[j], Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
-                u = 0.5 * abs(v1 + v2)
-                R = R_eq[s, k]
-                if lengths[k] > 0.0 and not par.boundary_only:
-                    # inlet shear heating lowers the Poiseuille rolling force (Zhou & Hoeprich 1991
-                    # eq. 22, factor of Gupta et al. 1992), here at the mean line load's pressure
-                    phi_R = 1.0
-                    if par.inlet_heating and u > 0.0:
-                        phi_R = film_thermal_factor_gupta(hertz_line_pressure(q_mean, R, E_star), Ep,
-                                                          thermal_loading(par.eta0, par.beta, u, par.k_oil),
-                                                          (v1 - v2) / u)
-                    # the film retards both surfaces by F each (Reynolds: dissipation 2 u F, couple
-                    # 2 F R, sim.physics.ehl.rolling_moment_hydrodynamic): Fh is the sum of both
-                    Fh[j, s, k] = phi_R * rolling_moment_hydrodynamic(u, q_mean, R, lengths[k], par.eta0, par.alpha,
-                                                                       Ep) / R
-                if qk <= 0.0:
-                    continue
-                bk = hertz_line_half_width(qk, R, E_star)
-                b[j, s, k] = bk
-                p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
-                if par.boundary_only:
-                    # no entrainment, no film: the solid carries the contact (Phi = 1, boundary
-                    # friction), no EHL rolling force and, without rolling, no hysteresis loss;
-                    # Eta is left as it is: the traction laws never read it without a film
-                    Phi[j, s, k] = 1.0
-                    continue
-                # inlet shear heating thins the film (Zhou & Hoeprich 1991 eq. 22, factor of Gupta
-                # et al. 1992)
-                phi_T = 1.0
-                if par.inlet_heating and u > 0.0:
-                    phi_T = film_thermal_factor_gupta(p0[j, s, k], Ep, thermal_loading(par.eta0, par.beta, u, par.k_oil),
-                                                      (v1 - v2) / u)
-                hk = phi_T * film_line(u, qk, R, par.eta0, par.alpha, Ep, par.film)
-                h[j, s, k] = hk
-                Phi[j, s, k] = solid_load_share(hk, par.sigma, par.B_ZH, par.C_ZH)
-                Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
-                ws = wR[j] * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
-                npts = _width_points(p0[j, s, k], bk, par, quad, pts)
-                theta = _viscosity_factor_at(HeatedContact(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2), par,
-                                             quad, npts, pts)
-                eta = par.eta0 * theta
-                log_ratio = viscosity_log_ratio(eta, par.pv_model)
-                for i in range(npts):
-                    Eta[j, s, k, i] = viscosity_at_pressure(eta, log_ratio, pts[WP_TERM, i], par.pv_model)
-        film.hrib[j] = 0.0
-        film.Phirib[j] = 0.0
-        film.prib[j] = 0.0
-        film.Etarib[j] = 0.0
-        if Qrib[j] > 0.0:
-            v1, v2 = _surface_speeds(wR[j], wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
-            u = 0.5 * abs(v1 + v2)
-            R_t = brg.rib_end[2]
-            R_m = brg.rib_end[3]
-            # Hertz point contact of the end (sphere or torus) on the cone rib: elliptical, a the radius of
-            # the circle of the same area, a = (3 Q R_area / (4 E*))^(1/3) (Johnson 4.22 with
-            # R_area of sim.physics.contact.hertz_point_radii)
-            a = (3.0 * Qrib[j] * brg.rib_end[4] / (4.0 * E_star)) ** (1.0 / 3.0)
-            prib = Qrib[j] / (np.pi * a * a)
-            if par.boundary_only:       # no film at the rib either (above)
-                film.prib[j] = prib
-                film.Phirib[j] = 1.0
+    pts, lengths, loaded = scratch
+    cr = Cen[j, 0]
+    cz = Cen[j, 1]
+    ur = Ax[j, 0]
+    uz = Ax[j, 1]
+    for s in range(2):
+        Om = -wc if s == 0 else wi - wc
+        eta0 = par.eta0 if s == 0 else par.eta0_inner    # the oil at this ring's temperature
+        # EHL rolling force of the strips: per unit length at the contact's mean line load
+        # (it hardly depends on the load: W^0.0126, rolling_force_hydrodynamic) over the
+        # loaded length of each strip (contact ends between slice centres,
+        # sim.physics.elasticity.loaded_lengths), so the loss is continuous where a slice
+        # enters or leaves contact, as the contact length is
+        Qs = 0.0
+        for k in range(n):
+            loaded[k] = q[j, s, k] > 0.0
+            Qs += w * q[j, s, k]
+        loaded_lengths(brg.free[j, s], loaded, w, brg.end_drop[s], lengths)
+        Ls = lengths.sum()
+        q_mean = Qs / Ls if Ls > 0.0 else 0.0
+        for k in range(n):
+            qk = q[j, s, k]
+            h[j, s, k] = 0.0
+            Phi[j, s, k] = 0.0
+            Fh[j, s, k] = 0.0
+            Fy[j, s, k] = 0.0
+            p0[j, s, k] = 0.0
+            b[j, s, k] = 0.0
+            if qk <= 0.0 and (lengths[k] <= 0.0 or par.boundary_only):
                 continue
-            hrib = film_point(u, Qrib[j], R_t, R_m, par.eta0, par.alpha, Ep)   # entrainment along e_t
-            Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
-            npts = _width_points(prib, 0.0, par, quad, pts)
-            # the surfaces slide along e_t through the ellipse's semi-axis along e_t, a_t = a sqrt(kappa)
-            # (area pi a_t a_m = pi a^2, a_t / a_m = kappa): the heat source's half-length
-            a_t = a * np.sqrt(brg.rib_end[5])
-            theta = _viscosity_factor_at(HeatedContact(prib, 0.0, hrib, Phirib, 0.0, a_t, v1, v2), par, quad, npts,
-                                         pts)
+            v1, v2 = _surface_speeds(wR, Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
+            u = 0.5 * abs(v1 + v2)
+            R = R_eq[s, k]
+            if lengths[k] > 0.0 and not par.boundary_only:
+                # inlet shear heating lowers the Poiseuille rolling force (Zhou & Hoeprich 1991
+                # eq. 22, factor of Gupta et al. 1992), here at the mean line load's pressure
+                phi_R = 1.0
+                if par.inlet_heating and u > 0.0:
+                    phi_R = film_thermal_factor_gupta(hertz_line_pressure(q_mean, R, E_star), Ep,
+                                                      thermal_loading(eta0, par.beta, u, par.k_oil),
+                                                      (v1 - v2) / u)
+                # the film retards both surfaces by F each (Reynolds: dissipation 2 u F, couple
+                # 2 F R, sim.physics.ehl.rolling_moment_hydrodynamic): Fh is the sum of both
+                Fh[j, s, k] = phi_R * rolling_moment_hydrodynamic(u, q_mean, R, lengths[k], eta0, par.alpha,
+                                                                   Ep) / R
+            if qk <= 0.0:
+                continue
+            bk = hertz_line_half_width(qk, R, E_star)
+            b[j, s, k] = bk
+            p0[j, s, k] = hertz_line_pressure(qk, R, E_star)
+            if par.boundary_only:
+                # no entrainment, no film: the solid carries the contact (Phi = 1, boundary
+                # friction), no EHL rolling force and, without rolling, no hysteresis loss;
+                # Eta is left as it is: the traction laws never read it without a film
+                Phi[j, s, k] = 1.0
+                continue
+            # inlet shear heating thins the film (Zhou & Hoeprich 1991 eq. 22, factor of Gupta
+            # et al. 1992)
+            phi_T = 1.0
+            if par.inlet_heating and u > 0.0:
+                phi_T = film_thermal_factor_gupta(p0[j, s, k], Ep, thermal_loading(eta0, par.beta, u, par.k_oil),
+                                                  (v1 - v2) / u)
+            hk = phi_T * film_line(u, qk, R, eta0, par.alpha, Ep, par.film)
+            h[j, s, k] = hk
+            Phi[j, s, k] = solid_load_share(hk, par.sigma, par.B_ZH, par.C_ZH)
+            Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
+            ws = wR * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
+            npts = _width_points(p0[j, s, k], bk, par, quad, pts)
+            theta = _viscosity_factor_at(HeatedContact(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, eta0), par,
+                                         quad, npts, pts)
+            eta = eta0 * theta
+            log_ratio = viscosity_log_ratio(eta, par.pv_model)
+            for i in range(npts):
+                Eta[j, s, k, i] = viscosity_at_pressure(eta, log_ratio, pts[WP_TERM, i], par.pv_model)
+    film.hrib[j] = 0.0
+    film.Phirib[j] = 0.0
+    film.prib[j] = 0.0
+    film.Etarib[j] = 0.0
+    if Qrib[j] > 0.0:
+        v1, v2 = _surface_speeds(wR, wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
+        u = 0.5 * abs(v1 + v2)
+        R_t = brg.rib_end[2]
+        R_m = brg.rib_end[3]
+        # Hertz point contact of the end (sphere or torus) on the cone rib: elliptical, a the radius of
+        # the circle of the same area, a = (3 Q R_area / (4 E*))^(1/3) (Johnson 4.22 with
+        # R_area of sim.physics.contact.hertz_point_radii)
+        a = (3.0 * Qrib[j] * brg.rib_end[4] / (4.0 * E_star)) ** (1.0 / 3.0)
+        prib = Qrib[j] / (np.pi * a * a)
+        if par.boundary_only:       # no film at the rib either (above)
             film.prib[j] = prib
-            film.hrib[j] = hrib
-            film.Phirib[j] = Phirib
-            eta = par.eta0 * theta
-            film.Etarib[j] = viscosity_at_pressure(eta, viscosity_log_ratio(eta, par.pv_model), pts[WP_TERM, 0],
-                                                   par.pv_model)
+            film.Phirib[j] = 1.0
+            return
+        hrib = film_point(u, Qrib[j], R_t, R_m, par.eta0_inner, par.alpha, Ep)   # entrainment along e_t
+        Phirib = solid_load_share(hrib, par.sigma_rib, par.B_ZH_rib, par.C_ZH_rib)
+        npts = _width_points(prib, 0.0, par, quad, pts)
+        # the surfaces slide along e_t through the ellipse's semi-axis along e_t, a_t = a sqrt(kappa)
+        # (area pi a_t a_m = pi a^2, a_t / a_m = kappa): the heat source's half-length
+        a_t = a * np.sqrt(brg.rib_end[5])
+        theta = _viscosity_factor_at(HeatedContact(prib, 0.0, hrib, Phirib, 0.0, a_t, v1, v2, par.eta0_inner), par,
+                                     quad, npts, pts)
+        film.prib[j] = prib
+        film.hrib[j] = hrib
+        film.Phirib[j] = Phirib
+        eta = par.eta0_inner * theta
+        film.Etarib[j] = viscosity_at_pressure(eta, viscosity_log_ratio(eta, par.pv_model), pts[WP_TERM, 0],
+                                               par.pv_model)
 
 
 @kernel

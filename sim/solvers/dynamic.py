@@ -47,9 +47,11 @@ Loads (every formula is a physics kernel; this module only assembles them):
 - raceway and rib traction, rolling resistance and drag: :func:`sim.physics.friction.roller_traction`
   with the roller's own orbit speed phi'_j in place of the cage speed and its own spin and skew
   (2-D slip per slice with skew), :func:`sim.physics.friction.roller_drag`; the film (thickness,
-  load share, rolling forces, Hertz data, thermal viscosity) is held fixed over a window and
-  refreshed between windows (:func:`sim.physics.friction.lubrication_state`, as the
-  quasi-static kinematics hold it over a Newton solve). The slip is the full rigid-body one
+  load share, rolling forces, Hertz data, thermal viscosity) of each roller at its loads and
+  speeds of the moment (:func:`sim.physics.friction.roller_lubrication`, in every right-hand
+  side: under a radial load a roller crosses the load zone within a fraction of a window; held
+  over a window until session 21, a roller carried the traction of its load at the window's
+  start around the bearing). The slip is the full rigid-body one
   (:data:`sim.physics.friction.RollerRates`, friction module docstring "Rates"): the skew rate
   psi' (each slice moves by psi' x along e_t, the spin about n gains psi' v'.n; the only damping
   of the skew on the TRB's rib, whose restoring stiffness with I_y would otherwise ring undamped
@@ -65,9 +67,15 @@ Loads (every formula is a physics kernel; this module only assembles them):
   (:func:`sim.physics.friction.pocket_friction`), and with skew the pocket couple
   (:func:`sim.physics.friction.pocket_skew_couple`) with a damper of the same ratio.
 
-Energy channels (quadrature states, for the power balance): work of the drive and the external
-loads, friction dissipation (the kernels' loss powers), contact damping, elastic energy of the
-contacts, and the pocket's work (spring, damper, skew constraint).
+Quadrature states (time integrals, for the power balance and the exact means of a window): work of
+the drive and the external loads, contact damping, elastic energy of the contacts, the pocket's
+work (spring, damper, skew constraint), the lateral-slip power of skewed rollers (a part of
+sliding), the friction dissipation of each mechanism (the kernels' loss powers, in the order of
+sim.physics.friction.COMPONENTS), and the angular impulses of the outer-ring and drive torques.
+A window's mean of each is its change over the window's duration, to the integrator's tolerance;
+means of samples taken at fixed instants missed the short traction peaks of rollers entering a
+load zone (prototype TSRB at 1.05 / 1.15 kN, 1891 rpm: sampled torque 3 % below the power loss
+over the speed).
 """
 from collections import namedtuple
 
@@ -77,20 +85,25 @@ from threadpoolctl import threadpool_limits
 
 from sim._math.jit import kernel
 from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_RING_R, EV_RING_T,
-                                  EV_RING_Z, EV_TOUT, EV_TZ, NC, NEV, RollerRates, pocket_friction, pocket_skew_couple, roller_drag, roller_traction)
+                                  EV_RING_Z, EV_TOUT, EV_TZ, NC, NEV, RollerRates, film_scratch, pocket_friction,
+                                  pocket_skew_couple, roller_drag, roller_lubrication, roller_traction)
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
 # theta, psi [rad], H_r, H_t, H_z [t mm^2/s = N mm s]; then the inner ring (delta_a, delta_x,
-# delta_y [mm], their rates [mm/s]), the cage (phi_c [rad], omega_c [rad/s]) and the energy
-# channels [N mm] (module docstring).
+# delta_y [mm], their rates [mm/s]), the cage (phi_c [rad], omega_c [rad/s]) and the quadrature
+# states (module docstring): energies [N mm] E_IN ... E_SKEW and E_DISS + i (mechanism i), angular
+# impulses [N mm s] A_TOUT, A_TIN.
 XI, ETA, PHI, VXI, VETA, WPHI, THETA, PSI, HR, HT, HZ = range(11)
 NS = 11
 NRING = 6
 NCAGE = 2
-E_IN, E_DISS, E_DAMP, E_ELASTIC, E_POCKET = range(5)
-NE = 5
-# States shared by all rollers (inner ring, cage, energy channels), after the Z NS roller states:
+E_IN, E_DAMP, E_ELASTIC, E_POCKET, E_SKEW = range(5)
+E_DISS = 5
+A_TOUT = E_DISS + NC
+A_TIN = A_TOUT + 1
+NE = A_TIN + 1
+# States shared by all rollers (inner ring, cage, quadrature states), after the Z NS roller states:
 # each roller's share in their derivatives is a row of ``shared_rows`` (:func:`rhs`).
 NSH = NRING + NCAGE + NE
 
@@ -134,7 +147,7 @@ DynamicProblem = namedtuple("DynamicProblem", ["bearing", "elasticity", "case", 
 # Scratch arrays of one rhs call (sizes from n slices): poses (Z, 3), active (Z, 2, n), and the
 # contact state of one roller.
 DynamicWork = namedtuple("DynamicWork", ["poses", "active", "f", "K", "Q", "depth", "G", "d", "ribc", "ev",
-                                         "ring", "ydot", "fd"])
+                                         "ring", "ydot", "fd", "film"])
 
 
 def state_size(Z):
@@ -142,11 +155,11 @@ def state_size(Z):
     return Z * NS + NRING + NCAGE + NE
 
 
-def empty_work(Z, n):
-    """:data:`DynamicWork` for Z rollers of n slices."""
+def empty_work(Z, n, nq):
+    """:data:`DynamicWork` for Z rollers of n slices and nq film width points."""
     return DynamicWork(np.zeros((Z, 3)), np.zeros((Z, 2, n), dtype=np.bool_), np.zeros(NY), np.zeros((NY, NY)),
                        np.zeros(3), np.zeros(3), np.zeros((2 * n + 1, NY)), np.zeros(2 * n + 1), np.zeros(4),
-                       np.zeros(NEV), np.zeros(2), np.zeros(NY), np.zeros(NY))
+                       np.zeros(NEV), np.zeros(2), np.zeros(NY), np.zeros(NY), film_scratch(n, nq))
 
 
 @kernel
@@ -187,7 +200,7 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
 
     rol (Z, NRO) and tot (NTO,) are written (module constants); shared_rows (Z, NSH) receives
     each roller's contribution to the derivatives of the shared states (inner-ring and cage
-    rates, energy channels [N mm/s]; the finite-difference Jacobian, :func:`jacobian`,
+    rates, quadrature states [N mm/s, N mm]; the finite-difference Jacobian, :func:`jacobian`,
     separates the rollers by it).
     """
     bearing = problem.bearing
@@ -330,6 +343,10 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             case.bearing.Qrib[j] = Qr
             case.bearing.nrib[j, 0] = work.ribc[2]
             case.bearing.nrib[j, 1] = work.ribc[3]
+            # the film at this roller's loads, speed and orbit speed, so that it follows the roller
+            # around the bearing (under a radial load a roller crosses the load zone in a fraction
+            # of a window)
+            roller_lubrication(j, wR, wphi, body.wi, case, work.film)
             # the roller's rates relative to its meridian frame (orbiting at phi'): skew rate psi' = Omega.v',
             # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z') [rad/s, mm/s]; the inner
             # ring's translation velocity along e_r, e_t, e_z at the roller's azimuth [mm/s], in the
@@ -348,9 +365,12 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             tot[TO_TIN] += ev[EV_TZ] + ev[EV_TOUT]
             for i in range(NC):
                 tot[TO_P0 + i] += ev[EV_P0 + i]
-                rows[NRING + NCAGE + E_DISS] += ev[EV_P0 + i]
+                rows[NRING + NCAGE + E_DISS + i] = ev[EV_P0 + i]
             tot[TO_PSKEW] += ev[EV_PSKEW]
+            rows[NRING + NCAGE + E_SKEW] = ev[EV_PSKEW]
             rows[NRING + NCAGE + E_IN] = body.wi * (ev[EV_TZ] + ev[EV_TOUT])
+            rows[NRING + NCAGE + A_TOUT] = ev[EV_TOUT]
+            rows[NRING + NCAGE + A_TIN] = ev[EV_TZ] + ev[EV_TOUT]
         # translation (cylindrical coordinates: centrifugal and Coriolis terms)
         a_r = r * wphi * wphi + Fr_ / m
         a_z = Fz_ / m
@@ -431,11 +451,11 @@ def jacobian(y, f0, rows0, problem, work, scale, J, rol, tot):
     """Forward-difference Jacobian J = d(rhs)/dy at y (f0 = rhs(y), rows0 its shared_rows).
 
     A roller's derivatives depend only on its own state, the inner ring and the cage, and the
-    derivatives of the shared states (ring and cage rates, energy channels) are sums over
+    derivatives of the shared states (ring and cage rates, quadrature states) are sums over
     rollers (each roller's share in ``shared_rows``): one rhs call perturbing state k of every
     roller at once gives column k of every roller block and its shared rows (NS calls), and one
     call per ring and cage state its full column (Curtis, Powell & Reid 1974 column grouping,
-    with the shared rows separated by roller). Nothing depends on the energy channels: their
+    with the shared rows separated by roller). Nothing depends on the quadrature states: their
     columns are zero. (Left zero, their rows lagged the Newton iterations of the implicit steps
     by one iteration, which made scipy's Radau recompute the Jacobian more often: TRB 32208
     4.5 kN 2000 rpm, 10 revolutions, 10987 rhs and 455 Jacobians against 9861 and 390.)
@@ -474,31 +494,32 @@ def jacobian(y, f0, rows0, problem, work, scale, J, rol, tot):
 
 # Integration and steady-state settings (conf/solver/dynamic.yaml, sim.api.dynamic_model):
 # method ('Radau' or 'BDF', scipy.integrate.solve_ivp), rtol [1], atol (state vector), window
-# [s] (film refresh and steady-state window), samples per window, max_windows (time cap),
+# [s] (the first steady-state window) and window_angle [rad] (the cage's turn of every window:
+# whole roller passes), samples per window, max_windows (time cap),
 # tol_speed, tol_torque, tol_load, tol_skew: relative changes of the window means of cage speed,
 # outer-ring torque and roller loads, and of the skews over the pocket's skew clearance, below
 # which two consecutive windows count as steady, scale (state
 # vector: finite-difference step floors, sim.api.dynamic_model).
-DynamicSettings = namedtuple("DynamicSettings", ["method", "rtol", "atol", "window", "samples", "max_windows",
+DynamicSettings = namedtuple("DynamicSettings", ["method", "rtol", "atol", "window", "window_angle", "samples",
+                                                 "max_windows",
                                                  "tol_speed", "tol_torque", "tol_load", "tol_skew", "scale"])
 
 
 class Integration:
-    """Time integration of one dynamic case with film refresh and the steady-state detector.
+    """Time integration of one dynamic case with the steady-state detector.
 
-    ``refresh`` (callable(y, rol)): refreshes the film of the problem at the state y (the
-    caller's physics, :func:`sim.physics.friction.lubrication_state`) before every window.
     After :meth:`run`: ``t`` (samples,), ``y`` (samples, state), ``rol_t`` (samples, Z, NRO),
     ``tot_t`` (samples, NTO), ``last_window`` (sample indices of the last window), ``steady``
-    (bool), ``windows``, ``change`` (the last relative changes of speed, torque, loads),
+    (bool), ``windows``, ``change`` (the last relative changes of speed, torque, loads, skews),
+    ``changes`` (those of every window after the first, in order),
     ``rhs_calls``, ``jac_calls``, ``lu_calls`` (LU decompositions of the Newton matrices).
     """
 
-    def __init__(self, problem, settings, refresh=None):
-        self.problem, self.settings, self.refresh = problem, settings, refresh
+    def __init__(self, problem, settings):
+        self.problem, self.settings = problem, settings
         Z, n = problem.bearing.Z, problem.bearing.x.shape[0]
         self.Z = Z
-        self.work = empty_work(Z, n)
+        self.work = empty_work(Z, n, problem.case.quad.wq.shape[0])
         nst = state_size(Z)
         self.rol = np.zeros((Z, NRO))
         self.tot = np.zeros(NTO)
@@ -538,6 +559,7 @@ class Integration:
         tots.append(t0)
         self.steady = False
         self.windows = 0
+        self.changes = []
         # one BLAS thread: the dense LU of the Newton matrix (~200 x 200) is 100x slower under
         # OpenBLAS's threads on a shared machine (measured 157 ms against 0.44 ms)
         with threadpool_limits(1):
@@ -547,11 +569,10 @@ class Integration:
     def _windows(self, y, s, o_cage, ts, ys, rols, tots):
         prev = None
         t = 0.0
+        duration = s.window
         for w in range(s.max_windows):
-            if self.refresh is not None:
-                self.refresh(y, self.outputs(y)[0])
-            t_end = t + s.window
-            t_eval = np.minimum(t + s.window * np.arange(1, s.samples + 1) / s.samples, t_end)
+            t_end = t + duration
+            t_eval = np.minimum(t + duration * np.arange(1, s.samples + 1) / s.samples, t_end)
             sol = solve_ivp(self.f, (t, t_end), y, method=s.method, rtol=s.rtol, atol=s.atol, jac=self.jac,
                             t_eval=t_eval)
             if not sol.success:
@@ -569,12 +590,20 @@ class Integration:
             win = slice(len(ts) - sol.t.shape[0], len(ts))
             Y = np.array(ys[win])
             R = np.array(rols[win])
-            T = np.array(tots[win])
-            # per-roller means sorted: under a radial load or a tilt the steady state is periodic in
+            # cage speed and torque: exact means (quadrature states, window_means); per-roller means
+            # of the samples, sorted: under a radial load or a tilt the steady state is periodic in
             # the frame of the load, each roller's load and skew following its azimuth, so over a
             # window of whole roller passes (sim.api.dynamic_model.integration_settings) the set of the
             # rollers' means repeats, one roller's mean passing to another
-            means = (Y[:, o_cage + 1].mean(), T[:, TO_TOUT].mean(),
+            exact = window_means(ys[win.start - 1], Y[-1], ts[-1] - ts[win.start - 1], self.Z)
+            # the next window: the cage's turn of whole roller passes at this window's cage speed
+            # (the first at the quasi-static one, which may differ by a few 0.1 %: the rollers' arcs
+            # of a window then crept from window to window, and with them the means of a roller
+            # at a load zone's steep edge, 2.4e-3 of the largest load per window, prototype TSRB
+            # at 1.05 / 1.15 kN)
+            if exact.cage_speed > 0.0:
+                duration = s.window_angle / exact.cage_speed
+            means = (exact.cage_speed, exact.torque,
                      np.sort(R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0), axis=0),
                      np.sort(Y[:, PSI:self.Z * NS:NS].mean(axis=0)))
             if prev is not None:
@@ -584,6 +613,7 @@ class Integration:
                 # skews against the pocket's skew clearance (0 without free skew)
                 d_skew = np.abs(means[3] - prev[3]).max() / self.problem.case.par.skew_clearance
                 self.change = (d_speed, d_torque, d_load, d_skew)
+                self.changes.append(self.change)
                 if (d_speed < s.tol_speed and d_torque < s.tol_torque and d_load < s.tol_load
                         and d_skew < s.tol_skew):
                     self.steady = True
@@ -601,7 +631,7 @@ class Integration:
         """The steady state at the instant the rollers pass the azimuths 2 pi j / Z of the
         quasi-static solution (roller j at psi_j, the radial load along psi = 0): integrated on from
         the end of the last window (state y at time t) until roller 0's orbit angle reaches the next
-        multiple of 2 pi / Z (less than one roller pass, the film of the last window). Sets
+        multiple of 2 pi / Z (less than one roller pass). Sets
         ``y_aligned``, ``rol_aligned`` (state and per-roller outputs there; the problem's
         frames and line loads are left at that state) and ``azimuth_order`` (Z,): the roller at
         azimuth 2 pi j / Z is roller ``azimuth_order[j]``."""
@@ -620,6 +650,21 @@ class Integration:
         self.y_aligned = y
         self.rol_aligned = self.outputs(y)[0]
         self.azimuth_order = np.argsort(slot)
+
+
+# Exact means over a time span, from the quadrature states and the cage angle at its ends
+# (:func:`window_means`): cage speed [rad/s], outer-ring and drive torques [N mm], loss power of
+# each mechanism (NC,) [N mm/s], contact and pocket damping power and lateral-slip power [N mm/s].
+WindowMeans = namedtuple("WindowMeans", ["cage_speed", "torque", "drive_torque", "power", "damping", "skew_power"])
+
+
+def window_means(y_start, y_end, duration, Z):
+    """:data:`WindowMeans` over a span of ``duration`` [s] from state y_start to y_end (Z rollers)."""
+    o_cage = Z * NS + NRING
+    o_q = o_cage + NCAGE
+    d = (np.asarray(y_end) - np.asarray(y_start)) / duration
+    return WindowMeans(float(d[o_cage]), float(d[o_q + A_TOUT]), float(d[o_q + A_TIN]),
+                       d[o_q + E_DISS:o_q + E_DISS + NC].copy(), float(d[o_q + E_DAMP]), float(d[o_q + E_SKEW]))
 
 
 @kernel

@@ -14,8 +14,8 @@ from sim.api.cases import operating_points
 from sim.api.simulation import build_models, resolved
 from sim.physics import friction as F
 from sim.solvers.dynamic import (E_DAMP, E_DISS, E_ELASTIC, E_IN, E_POCKET, ETA, HR, NCAGE, NRING, NS, PHI, PSI,
-                                 RO_QI, RO_QO, THETA, TO_TOUT, VETA, VXI, WPHI, XI, Integration, kinetic_energy,
-                                 roller_axis)
+                                 RO_QI, RO_QO, RO_QRIB, THETA, TO_P0, TO_TOUT, VETA, VXI, WPHI, XI, Integration,
+                                 kinetic_energy, roller_axis)
 
 TRB = ["bearing=trb_32208", "load.Fa=4500", "load.Fr=0", "load.speed=2000"]
 CAGE = F.COMPONENTS.index("cage")
@@ -133,7 +133,7 @@ def energy_residual(integ, problem):
     E0, E1 = integ.y[0], integ.y[-1]
     dT = kinetic_energy(E1, problem) - kinetic_energy(E0, problem)
     W = E1[o_en:] - E0[o_en:]
-    out = W[E_DISS] + W[E_DAMP] + W[E_ELASTIC] + W[E_POCKET] + dT
+    out = W[E_DISS:E_DISS + F.NC].sum() + W[E_DAMP] + W[E_ELASTIC] + W[E_POCKET] + dT
     return (W[E_IN] - out) / W[E_IN], W, dT
 
 
@@ -173,7 +173,8 @@ def test_power_balance_over_a_run(overrides, kick):
     settings = dc.settings._replace(window=dc.settings.window * 0.2, samples=20, max_windows=1)
     integ = dm.run(dc._replace(settings=settings))
     rel, W, dT = energy_residual(integ, dc.problem)
-    print(f"power balance: W_in {W[E_IN]:.4g} N mm, dT {dT:.4g}, diss {W[E_DISS]:.4g}, damp {W[E_DAMP]:.3g}, "
+    print(f"power balance: W_in {W[E_IN]:.4g} N mm, dT {dT:.4g}, diss {W[E_DISS:E_DISS + F.NC].sum():.4g}, "
+          f"damp {W[E_DAMP]:.3g}, "
           f"elastic {W[E_ELASTIC]:.3g}, pocket {W[E_POCKET]:.3g}; relative residual {rel:.2e}")
     assert abs(dT) > 1e-3 * abs(W[E_IN]), "no transient: the balance would not test the kinetic energy"
     assert abs(rel) < 0.005
@@ -321,37 +322,37 @@ def test_the_transient_converges_with_the_integrator_tolerance():
     assert err[-1, 1] < 1e-2 * err[0, 1]
 
 
+# the prototype TSRB (thesis Table 6.1) at 3.46 kN, 4199 rpm: its quasi-static skew reverses between
+# 31 and 40 degC oil (tests/friction/test_skew.py: the outer race's skew moment outweighs the inner's
+# in the thicker film)
+SKEW_REVERSAL = ["bearing=tsrb_prototype", "load.Fa=3462", "load.Fr=0", "load.speed=4199"]
+SKEW_REVERSAL_TEMPERATURES = {25.0: -1.0, 60.0: +1.0}     # degC: sign of the skew
+
+
 def test_skew_changes_sign_with_the_inner_outer_friction_balance_in_time():
     """Trend rung (issue 18 item 4), Kellstroem (1979) and Blomqvist in the time domain: a roller
     skews towards the side to which the friction of the dominating raceway contact turns it, so
     reversing the balance of inner and outer raceway friction reverses the skew. Along a crowned
     roller the rolling speed matches each ring on a line only, so each race's circumferential
-    tractions change sign along the roller and leave a moment about the skew axis v'; the two
-    races' moments have opposite signs (pinion TSRB: outer < 0 < inner, checked in
-    tests/friction/test_skew.py) and the rollers rest on their pockets on the side of the larger.
-    The same device as the quasi-static rung: the film viscosity of one race raised five-fold
-    (more traction there; the film is held over the window, no refresh), the pinion TSRB from
-    rolling kinematics and zero skew, skew and tilt free, integrated for 0.2 revolution (10.9 ms;
-    the skew creeps onto the pocket, damped by the tractions' slope against the skew rate, within
-    ~2 ms with the inner race raised and ~4 ms with the outer). The mean skew of the window's last
-    quarter must be negative for every roller with the outer race raised and positive with the
-    inner race raised (signs only: their size is the pocket clearance's, atan(c / Lwe))."""
-    model, friction, op, plain, dc = dynamic_case(PINION_TSRB + ["friction.skew.enabled=true",
-                                                                 "solver.dynamic.start=rolling"])
-    problem = dc.problem
-    Z = problem.bearing.Z
-    film = problem.case.film
-    eta = film.Eta.copy()
-    settings = dc.settings._replace(window=0.2 * dc.settings.window, samples=20, max_windows=1)
-    skews = []
-    for s in range(2):                                  # 0 outer race, 1 inner race
-        film.Eta[:] = eta
-        film.Eta[:, s] *= 5.0
-        integ = Integration(problem, settings).run(dc.y0)
-        skews.append(np.degrees(integ.y[-5:, PSI:Z * NS:NS].mean(axis=0)))
-    film.Eta[:] = eta
-    print(f"mean skew [deg], outer race friction raised {skews[0].mean():.4f}, inner race raised {skews[1].mean():.4f}")
-    assert np.all(skews[0] < 0.0) and np.all(skews[1] > 0.0)
+    tractions change sign along the roller and leave a moment about the skew axis v' of opposite
+    signs (outer < 0 < inner). In the prototype TSRB at 3.46 kN and 4199 rpm the oil temperature
+    shifts that balance: at 25 degC the outer race's moment is the larger (-45.6 against 44.1 N mm),
+    at 60 degC the inner's (50.1 against -46.5; tests/friction/test_skew.py). From rolling
+    kinematics and zero skew, skew and tilt free, integrated for 0.3 revolution (4.0 ms; the rollers
+    creep onto their pockets within ~2 ms), every roller's skew over the window's last quarter
+    must have the sign the balance gives (signs only: their size is the pocket clearance's,
+    atan(c / Lwe) = 0.43 deg). Until session 21 this rung raised one race's film viscosity
+    five-fold by hand, which the film computed in every right-hand side no longer keeps."""
+    for temperature, sign in SKEW_REVERSAL_TEMPERATURES.items():
+        model, friction, op, plain, dc = dynamic_case(SKEW_REVERSAL + [f"load.oil_temperature={temperature}",
+                                                                       "friction.skew.enabled=true",
+                                                                       "solver.dynamic.start=rolling"])
+        Z = dc.problem.bearing.Z
+        settings = dc.settings._replace(window=0.3 * dc.settings.window, samples=20, max_windows=1)
+        integ = Integration(dc.problem, settings).run(dc.y0)
+        skew = np.degrees(integ.y[-5:, PSI:Z * NS:NS])
+        print(f"{temperature} degC: skew of the last quarter {skew.min():.4f} to {skew.max():.4f} deg")
+        assert np.all(np.sign(skew) == sign)
 
 
 def test_the_rib_held_skew_is_overdamped_and_creeps_at_the_traction_rate():
@@ -365,9 +366,11 @@ def test_the_rib_held_skew_is_overdamped_and_creeps_at_the_traction_rate():
     c(psi) psi' = M(psi), M the moment about v' of the tractions and the rib at the quasi-static
     kinematics (roller_traction), whence the time to half the equilibrium skew psi* is
     t_1/2 = int_0^(psi*/2) c / M dpsi. From the quasi-static solution with the skew set to 0 the
-    run must reach psi*/2 at that time within 10 % (measured 4 %: the loads, tilt and speeds,
-    held at the quasi-static solution in M and c, respond to the lateral tractions along the
-    path), and rise monotonically without overshoot. Without the skew rate in the slip the skew
+    run must reach psi*/2 at that time within 20 %, and rise monotonically without overshoot. The
+    prediction holds the loads, tilt, speeds and film of the quasi-static solution in M and c; in
+    the run they respond to the lateral tractions along the path (measured 4 % with the film held
+    over the window, 16 % since session 21 with the film following the loads: the run creeps
+    faster), so the bound tests the creep law's order and shape, not its path. Without the skew rate in the slip the skew
     rang undamped between 0 and 2 psi* (quarter period 0.1 ms against t_1/2 ~ 3 ms)."""
     overrides = ["bearing=trb_31313"] + PINION_TSRB[1:] + ["friction.skew.enabled=true",
                                                            "solver.dynamic.start=quasi_static"]
@@ -376,7 +379,7 @@ def test_the_rib_held_skew_is_overdamped_and_creeps_at_the_traction_rate():
     raw, fr = dm.quasi_static_start(model, friction, op)
     kin = fr["kinematics"]
     wc, wR, psi = kin[0], kin[1], kin[2]
-    _, y0, _ = dm.body_and_state(model, friction, op, plain["solver"]["dynamic"], raw,
+    _, y0 = dm.body_and_state(model, friction, op, plain["solver"]["dynamic"], raw,
                                  (wc, wR, np.zeros_like(psi), kin[3]))
     ev = np.zeros(F.NEV)
 
@@ -398,21 +401,27 @@ def test_the_rib_held_skew_is_overdamped_and_creeps_at_the_traction_rate():
     i = np.flatnonzero(s >= 0.5 * psi_eq)[0]
     t_run = t[i - 1] + (0.5 * psi_eq - s[i - 1]) / (s[i] - s[i - 1]) * (t[i] - t[i - 1])
     print(f"time to half the skew {psi_eq:.3e} rad: predicted {t_half * 1e3:.3f} ms, run {t_run * 1e3:.3f} ms")
-    assert abs(t_run / t_half - 1.0) < 0.10
+    assert abs(t_run / t_half - 1.0) < 0.20
     assert np.all(np.diff(s) >= 0.0) and s.max() <= psi_eq
 
 
-def test_a_rib_touched_after_the_film_was_taken_carries_no_traction_and_no_error():
-    """The film is held over a window (refreshed between windows), so a roller can touch its rib
-    while its film has no rib contact (film.prib 0). TRB 31313 at 32 / 48 kN, 3821 rpm: at the
-    start state a roller outside the quasi-static load zone does so, and the rib traction divided
-    by the film's zero rib pressure (ZeroDivisionError in the right-hand side, before anything
-    ran). Such a rib now carries no traction until the next film, as an unloaded strip of the
-    slices: the right-hand side at the start state is finite."""
+def test_a_roller_touching_its_rib_off_the_load_zone_has_a_rib_film_and_finite_rates():
+    """The film follows each roller's loads in every right-hand side
+    (sim.physics.friction.roller_lubrication). Until session 20 it was held over a window, so a
+    roller could touch its rib with no rib film; the rib traction then divided by the film's zero
+    rib pressure (ZeroDivisionError before anything ran: TRB 31313 at 32 / 48 kN, 3821 rpm, where
+    at the start state a roller outside the quasi-static load zone touches its rib). At that state
+    every roller on its rib now has a rib film and pays rib friction, and the rates are finite."""
     _, _, _, _, dc = dynamic_case(["bearing=trb_31313", "load.Fa=32058", "load.Fr=48018", "load.speed=3821",
                                    "load.oil_temperature=47"])
-    dy = Integration(dc.problem, None).f(0.0, dc.y0)
+    integ = Integration(dc.problem, None)
+    dy = integ.f(0.0, dc.y0)
     assert np.isfinite(dy).all()
+    on_rib = integ.rol[:, RO_QRIB] > 0.0
+    film = dc.problem.case.film
+    assert on_rib.any() and not dc.active[on_rib].all(), "a roller off the quasi-static load zone must touch its rib"
+    assert np.all(film.prib[on_rib] > 0.0) and np.all(film.hrib[on_rib] > 0.0)
+    assert integ.tot[TO_P0 + F.COMPONENTS.index("rib")] > 0.0
 
 
 def test_free_rollers_hold_where_a_rigid_cage_is_far_off_the_dynamic_torque():

@@ -444,15 +444,15 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
         # mean over y in (-b, b) = integral over t in (0, pi/2) of f(p0 cos t) cos t, y = b sin t
         A = quad(lambda s: eta0 * math.exp(alpha * p * math.cos(s)) * math.cos(s), 0.0, 0.5 * math.pi,
                  epsabs=0.0, epsrel=1e-13)[0] * v * v / h
-        theta = friction._viscosity_factor(friction.HeatedContact(p, half, h, 0.0, 0.0, half, U1, U2), par, rule)
+        theta = friction._viscosity_factor(friction.HeatedContact(p, half, h, 0.0, 0.0, half, U1, U2, eta0), par, rule)
     else:
         A = eta0 * math.exp(alpha * p) * v * v / h
-        theta = friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2), par, rule)
+        theta = friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2, eta0), par, rule)
     C = h / (8.0 * k_oil) + 4.0 / 3.0 * math.sqrt(2.0 * half * kappa_s / math.pi) / (k_s * (math.sqrt(U1) + math.sqrt(U2)))
     dT = lambertw(beta * C * A).real / beta
     assert 5.0 < dT < 200.0                  # a case where heating matters (rib of a TRB at 40 kN)
     assert -math.log(theta) / beta == pytest.approx(dT, rel=1e-7)
-    assert friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2),
+    assert friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2, eta0),
                                        par._replace(thermal=False), rule) == 1.0
 
 

@@ -29,6 +29,11 @@ CASES = {
     # the thesis's torus roller end (bearing.roller_end = torus, docs/roller_end_torus.md)
     "trb_32208 combined torus": ["bearing=trb_32208", "bearing.roller_end=torus", "load.Fa=4500", "load.Fr=2000"],
     "trb_31313 35 kN torus": ["bearing=trb_31313", "bearing.roller_end=torus", *PINION],
+    # the prototype, whose skew reverses with the oil temperature (below; tests/dynamic/test_ladder.py)
+    "tsrb_prototype 25 degC": ["bearing=tsrb_prototype", "load.Fa=3462", "load.Fr=0", "load.speed=4199",
+                               "load.oil_temperature=25"],
+    "tsrb_prototype 60 degC": ["bearing=tsrb_prototype", "load.Fa=3462", "load.Fr=0", "load.speed=4199",
+                               "load.oil_temperature=60"],
 }
 
 
@@ -294,14 +299,7 @@ def test_skew_changes_sign_with_the_inner_outer_friction_balance():
     there) the roller skews to the side of that race's moment, the sign flips between the two."""
     pb, wc, _ = solved("tsrb_pinion 35 kN")
     case, j = pb.case, 0
-    ev = np.zeros(F.NEV)
-    moments = []
-    p0 = case.film.p0.copy()
-    for s in range(2):
-        case.film.p0[j, 1 - s] = 0.0                   # this race's contacts alone
-        F.roller_friction(j, pb.wR[j], 0.0, wc, pb.wi, case, ev)
-        moments.append(ev[F.EV_MS])
-        case.film.p0[:] = p0
+    moments = race_skew_moments(pb, wc, j)
     assert moments[0] < 0.0 < moments[1]
     skews = []
     eta = case.film.Eta.copy()
@@ -317,6 +315,38 @@ def test_skew_changes_sign_with_the_inner_outer_friction_balance():
         skews.append(psi[j])
         case.film.Eta[:] = eta
     assert skews[0] < 0.0 < skews[1]
+
+
+def race_skew_moments(pb, wc, j):
+    """Skew moments (about v', unskewed) of roller j's outer and inner raceway contacts alone [N mm]
+    at the solved speeds of ``pb``."""
+    case = pb.case
+    ev = np.zeros(F.NEV)
+    moments = []
+    p0 = case.film.p0.copy()
+    for s in range(2):
+        case.film.p0[j, 1 - s] = 0.0                   # this race's contacts alone
+        F.roller_friction(j, pb.wR[j], 0.0, wc, pb.wi, case, ev)
+        moments.append(ev[F.EV_MS])
+        case.film.p0[:] = p0
+    return moments
+
+
+def test_the_oil_temperature_reverses_the_race_balance_and_the_skew_of_the_prototype():
+    """The same balance shifted by a physical parameter: the prototype TSRB at 3.46 kN, 4199 rpm.
+    At 25 degC (lambda ~6) its outer race's skew moment outweighs the inner's (measured -45.6
+    against 44.1 N mm) and the rollers skew negative; at 60 degC (lambda ~2.4) the inner's does
+    (50.1 against -46.5) and they skew positive, each on its pocket wall (atan(c / Lwe) = 0.43
+    deg). The dynamic ladder checks the same reversal in the time domain."""
+    for temperature, sign in (("25", -1.0), ("60", +1.0)):
+        pb, wc, ok = solved(f"tsrb_prototype {temperature} degC")
+        assert ok
+        outer, inner = race_skew_moments(pb, wc, 0)
+        assert outer < 0.0 < inner
+        assert np.sign(outer + inner) == sign
+        # pure axial: one roller class, its first roller solved for all (sim.solvers.symmetry)
+        assert np.sign(pb.psi[0]) == sign
+        assert abs(pb.psi[0]) >= pb.case.par.skew_clearance
 
 
 def test_pinion_tsrb_rests_on_its_pocket_and_the_trb_31313_is_held_by_its_rib():
