@@ -159,7 +159,7 @@ def integration_settings(g, op, body, raw, fr, dyn, omega_n):
                            int(dyn["samples_per_window"]),
                            int(dyn["max_windows"]), float(dyn["steady_tolerance_speed"]),
                            float(dyn["steady_tolerance_torque"]), float(dyn["steady_tolerance_load"]),
-                           float(dyn["steady_tolerance_skew"]), scale)
+                           float(dyn["steady_tolerance_skew"]), int(dyn["fluctuation_windows"]), scale)
 
 
 def run(dcase):
@@ -169,7 +169,8 @@ def run(dcase):
 
 def outputs(model, op, dcase, integ, wall_time, output_cfg):
     """(summary, series): the steady-state summary as :func:`sim.api.bearing_model.case_results`
-    plus the friction outputs (torque, breakdown, power, cage speed: exact means over the last window;
+    plus the friction outputs (torque, breakdown, power, cage speed: exact means over the last window,
+    or over the block of windows that fluctuate about the steady state;
     per-roller loads, poses, skew and tilt: at the instant the rollers pass the quasi-static
     azimuths, roller j at 2 pi j / Z, so that they compare roller by roller with the quasi-static
     solution; output units), and the time series (output units; sim.io.SERIES_VARIABLES), rollers
@@ -221,8 +222,10 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
     summary = case_results(model, op, raw, output_cfg)
     if not integ.steady:
         return summary, series
-    # scalars: the exact means over the last window (whole roller passes; quadrature states)
-    means = window_means(y[last[0] - 1], y[last[-1]], integ.t[last[-1]] - integ.t[last[0] - 1], Z)
+    # scalars: the exact means over the last window, or the block of windows that fluctuate about
+    # the steady state (whole roller passes; quadrature states)
+    i0 = integ.average_from
+    means = window_means(y[i0], y[-1], integ.t[-1] - integ.t[i0], Z)
     power = means.power
     torque = means.torque
     # film outputs at the aligned state (its film: Integration._align leaves the problem there)
