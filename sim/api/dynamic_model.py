@@ -183,7 +183,6 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
     y = integ.y
     rol = integ.rol_t
     tot = integ.tot_t
-    last = integ.last_window
     roller = y[:, :o_ring].reshape(len(integ.t), Z, NS)
     series = {
         "time": integ.t,

@@ -510,7 +510,7 @@ class Integration:
     """Time integration of one dynamic case with the steady-state detector.
 
     After :meth:`run`: ``t`` (samples,), ``y`` (samples, state), ``rol_t`` (samples, Z, NRO),
-    ``tot_t`` (samples, NTO), ``last_window`` (sample indices of the last window), ``steady``
+    ``tot_t`` (samples, NTO), ``steady``
     (bool), ``windows``, ``change`` (the last relative changes of speed, torque, loads, skews),
     ``changes`` (those of every window after the first, in order), ``averaged_windows`` (1, or
     the block of windows whose mean is the steady state when they fluctuate about it),
@@ -639,7 +639,6 @@ class Integration:
         self.y = np.array(ys)
         self.rol_t = np.array(rols)
         self.tot_t = np.array(tots)
-        self.last_window = np.arange(len(ts) - s.samples, len(ts))
         # the sample at which the windows of the steady state's means begin (the state there and at
         # the end give their exact means, window_means)
         self.average_from = len(ts) - 1 - self.averaged_windows * s.samples
