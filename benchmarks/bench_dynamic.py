@@ -30,6 +30,11 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   ring), median of 3 runs on the idle machine (load 0.1-0.8): TRB 32208 20.3 s CPU (2.03 s/rev, 10185 rhs,
   407 Jacobians), rhs 0.601 ms; pinion TSRB 8.6 s CPU (0.86 s/rev, 5660 rhs, 193 Jacobians), rhs 0.469 ms.
   Within the 60 s target; the TRB 32208 at the 20 s goal.
+- 2026-11-28, 26fce89 (each roller's film computed in every right-hand side, session 21), median of 3
+  runs, a test run on the other core (load 0.9-1.9): TRB 32208 28.0 s CPU (2.80 s/rev, 11177 rhs, 458
+  Jacobians), rhs 0.947 ms; pinion TSRB 12.5 s CPU (1.25 s/rev, 5389 rhs, 180 Jacobians), rhs
+  0.981 ms. The work is the same as before (rhs and Jacobian counts); each right-hand side costs
+  ~1.6x. Within the 60 s target; the TRB 32208 misses the 20 s goal.
 
 Run from the repository root::
 
