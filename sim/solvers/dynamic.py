@@ -571,7 +571,6 @@ class Integration:
         return self
 
     def _windows(self, y, s, o_cage, ts, ys, rols, tots):
-        prev = None
         history = []
         self.averaged_windows = 1
         t = 0.0
@@ -613,7 +612,8 @@ class Integration:
                      np.sort(R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0), axis=0),
                      np.sort(Y[:, PSI:self.Z * NS:NS].mean(axis=0)))
             history.append(means)
-            if prev is not None:
+            if len(history) > 1:
+                prev = history[-2]
                 d_speed = abs(means[0] - prev[0]) / abs(means[0])
                 d_torque = abs(means[1] - prev[1]) / max(abs(means[1]), np.finfo(float).tiny)
                 d_load = np.abs(means[2] - prev[2]).max() / np.abs(means[2]).max()
@@ -634,7 +634,6 @@ class Integration:
                     self.steady = True
                     self.averaged_windows = k
                     break
-            prev = means
         self.t = np.array(ts)
         self.y = np.array(ys)
         self.rol_t = np.array(rols)
