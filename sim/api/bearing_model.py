@@ -273,7 +273,8 @@ class BearingModel:
             (:data:`sim.physics.roller_contact.ContactFrames` of the Z rollers at the returned
             poses when converged: slice contact points and normals, roller centres and axes,
             roller-end / rib points), and solver_info (roller iterations, contact evaluations,
-            ring backtracks, continuation steps, roller classes solved).
+            ring backtracks, continuation steps, roller classes solved, rollers outside the load zone
+            left unloaded where no rest on the outer raceway was found).
         """
         g = self.geometry
         s = self.settings
@@ -295,7 +296,11 @@ class BearingModel:
             if Fa <= 0.0:
                 raise InputError(f"the friction loads on the inner ring reverse the applied axial load: load.Fa = "
                                  f"{op.Fa} N -> {Fa} N (allowed: > 0)")
-        problem = QuasiStaticProblem(self.bearing, self.elasticity, self.newton, self.body_loads(op))
+        body = self.body_loads(op)
+        problem = QuasiStaticProblem(self.bearing, self.elasticity, self.newton, body, False)
+        # with the centrifugal force a TRB's rollers outside the load zone rest on the cup and the rib
+        # (sim.solvers.quasi_static, module docstring): a second solve from the converged one
+        resting = problem._replace(rest=True) if body.centrifugal > 0.0 and g.type == "TRB" else None
         rollers = RollerSet(np.zeros((g.Z, 3)), np.zeros((g.Z, 2, n)), np.zeros((g.Z, 2, n), dtype=np.bool_),
                             np.zeros((g.Z, 2)), np.zeros(g.Z), np.zeros((g.Z, 4)), empty_frames(g.Z, n),
                             np.zeros((g.Z, 2, n)))
@@ -303,7 +308,7 @@ class BearingModel:
         totals = np.zeros(3, dtype=np.int64)  # roller iterations, contact evaluations, ring backtracks
         reports = []
 
-        def run(Fa, Fr, tilt_rad, ring, warm):
+        def run(Fa, Fr, tilt_rad, ring, warm, problem=problem):
             report = solve_bearing(Fa, Fr, tilt_rad, ext, problem, ring, rollers, warm)
             totals[:] += (report.roller_iterations, report.contact_evaluations, report.ring_backtracks)
             reports.append(report)
@@ -313,6 +318,7 @@ class BearingModel:
         tilt_rad = np.radians(op.tilt_deg)
         t0 = time.perf_counter()
         converged = False
+        rested = False
         iterations = 0
         steps = 0
         if start is not None and start["converged"]:
@@ -320,9 +326,10 @@ class BearingModel:
             poses[:] = start["poses"]
             q[:] = start["line_load"]
             active[:] = q > 0.0
-            converged = run(Fa, Fr, tilt_rad, ring, True)
+            converged = run(Fa, Fr, tilt_rad, ring, True, resting or problem)
             iterations = reports[-1].iterations
             steps = 1
+            rested = converged
         if not converged:
             ring = self.initial_ring(op)
             converged = run(Fa, Fr, tilt_rad, ring, False)
@@ -358,12 +365,16 @@ class BearingModel:
             converged = ok and lam == 1.0
             if not converged:
                 ext[:] = ext_case
+        if converged and resting is not None and not rested and np.any(rollers.Q.sum(axis=1) == 0.0):
+            converged = run(Fa, Fr, tilt_rad, ring, True, resting)
+            iterations += reports[-1].iterations
+            steps += 1
         wall_time_s = time.perf_counter() - t0
         pressure = self.hertz_pressure(q)
         last = reports[-1]
         solver_info = dict(roller_iterations=int(totals[0]), contact_evaluations=int(totals[1]),
                            ring_backtracks=int(totals[2]), continuation_steps=steps,
-                           roller_classes=int(last.roller_classes))
+                           roller_classes=int(last.roller_classes), unrested_rollers=int(last.unrested_rollers))
         return dict(converged=bool(converged), iterations=int(iterations),
                     residual=np.array([last.residual_axial, last.residual_radial]), wall_time=wall_time_s, ring=ring,
                     poses=poses, line_load=q, pressure=pressure, Q=rollers.Q, Q_rib=rollers.Q_rib,

@@ -10,8 +10,9 @@ import numpy as np
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
 from sim.physics.contact import hertz_point_radii
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z, FL_U, FL_W, NC, NEV,
-                                  NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, width_quadrature)
+from sim.physics.friction import (TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z, FL_U, FL_W, NC,
+                                  NEV, NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, roller_friction,
+                                  width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.lubricant import MPA_S_PER_PA_S
 from sim.solvers.symmetry import symmetry_classes
@@ -197,8 +198,10 @@ class FrictionModel:
         mu_ref = max(par.solid.mu_s, par.rheology.c_tau)
         tol_M = self.tolerance * mu_ref * float(load.max()) * bearing.rho_m
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw      # at the pitch radius
+        # rollers on the outer raceway alone (outside the load zone, sim.solvers.quasi_static): their spin held
+        held = active & (raw["Q"][:, 1] == 0.0)
         settings = KinematicsSettings(active, weight, tol_M, tol_T, self.max_iterations, self.traction_kinematics,
-                                      self.seed_tolerance_factor, final)
+                                      self.seed_tolerance_factor, final, held)
         return FrictionProblem(case, settings, wc, wR, psi, wi, jac, start is None or static, static, weight, source,
                                load)
 
@@ -262,9 +265,12 @@ class FrictionModel:
         # each mechanism's power sums to it exactly (it equals power / omega_i up to the kinematic
         # tolerance, module docstring)
         if self.traction_kinematics and not static:
-            components = totals[EV_TOUT] * power / power.sum()
-            skew_sliding = totals[EV_TOUT] * totals[EV_PSKEW] / power.sum()
-            torque = float(totals[EV_TOUT])
+            # held rollers (sim.solvers.kinematics) lose spin to their friction moment M at the rate
+            # -sum(M omega_R), which the inner ring puts back in the load zone: the torque is the
+            # outer ring's plus that rate over the speed (with held rollers, the power loss over the speed)
+            torque = float(totals[EV_TOUT]) - held_spin_power(settings, wR, psi, wc, wi, case) / wi
+            components = torque * power / power.sum()
+            skew_sliding = torque * totals[EV_PSKEW] / power.sum()
         else:
             components = power / wi
             skew_sliding = totals[EV_PSKEW] / wi
@@ -288,6 +294,18 @@ class FrictionModel:
             "ring_loads": loads[:, FL_RING_R:FL_RING_Z + 1].copy(),
             "kinematics": (wc, wR.copy(), psi.copy(), pb.jac),
         } | ({"roller_skew": np.degrees(psi), "skew_sliding": float(skew_sliding)} if par.skew else {})
+
+
+def held_spin_power(settings, wR, psi, wc, wi, case):
+    """Rate sum(weight M omega_R) [N mm/s] at which the friction moments M about their axes change
+    the spin energy of the held rollers (:data:`sim.solvers.kinematics.KinematicsSettings`
+    ``held``) at roller speeds wR, skews psi, cage speed wc and inner-ring speed wi [rad/s]."""
+    ev = np.empty(NEV)
+    rate = 0.0
+    for j in np.flatnonzero(settings.held):
+        roller_friction(int(j), float(wR[j]), float(psi[j]), wc, wi, case, ev)
+        rate += settings.weight[j] * ev[EV_MU] * wR[j]
+    return rate
 
 
 def film_outputs(case, load, wc, wR, wi):

@@ -347,6 +347,25 @@ def _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz):
     return wR * (uz * (Xr - cr) - ur * (Xz - cz)), Om * Xr
 
 
+@kernel
+def outer_rolling_speed(j, wc, case):
+    """Speed of roller j about its axis [rad/s] at which it rolls on the outer raceway without
+    rigid slip at cage speed wc [rad/s] (the outer ring turning at -wc in the cage frame): the
+    sliding speed of :func:`_surface_speeds`, linear in omega_R, vanishes in the mean of its outer
+    slices weighted by their line loads (the held spin of a roller resting on the outer raceway,
+    sim.solvers.kinematics). 0 for a roller without outer load."""
+    X, Cen, Ax = case.frames.X, case.frames.Cen, case.frames.Ax
+    q = case.bearing.q
+    roll = 0.0
+    ring = 0.0
+    for k in range(q.shape[2]):
+        if q[j, 0, k] > 0.0:
+            v1, v2 = _surface_speeds(1.0, -wc, X[j, 0, k, 0], X[j, 0, k, 1], Cen[j, 0], Cen[j, 1], Ax[j, 0], Ax[j, 1])
+            roll += q[j, 0, k] * v1
+            ring += q[j, 0, k] * v2
+    return ring / roll if roll != 0.0 else 0.0
+
+
 # Rows of a contact's table of width points (:func:`_width_points`, :func:`_heat_flux`): what the
 # film temperature solve needs at every trial temperature but does not depend on the viscosity.
 WP_P, WP_TERM, WP_V, WP_W, WP_SOLID = range(5)   # pressure [MPa], sim.physics.ehl.pressure_term [1],

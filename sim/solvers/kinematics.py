@@ -8,6 +8,19 @@ the z-moments the contacts exert).
 :func:`solve_kinematics_newton` takes Newton steps on all of them at once (roller rows
 eliminated); :func:`solve_kinematics` brackets the cage speed, each roller at its own balance
 (slower, but it cannot leave the bracket).
+
+A TRB's rollers outside the load zone rest on the cup and the rib (sim.solvers.quasi_static).
+Their spin is not balanced but held (``KinematicsSettings.held``) at rolling on the
+outer raceway (:func:`sim.physics.friction.outer_rolling_speed`): such a roller leaves the load
+zone spinning, and its friction moment brakes it only slowly, while balanced on the outer ring
+alone it would skid. TRB 31313 at 32.1 / 48.0 kN, 3821 rpm: at rolling speed (1110 rad/s) its
+moment is -17.9 N mm against a spin I omega of 2.2 N mm s, and its own balance lies at 170-200
+rad/s; the time-domain run slows it from 1111 to 972 rad/s over the 0.019 s it spends outside the
+load zone (a mean moment of 15 N mm), so that the held speed is 6 % above its mean there and its
+rolling loss reads some 10 % high. What the brake takes out of its spin the inner ring puts back
+when it enters the load zone, so the torque of a case with held rollers is the power loss over
+the speed (sim.api.friction_model); the slip of that spin-up (1/2 I (139 rad/s)^2 per pass, 17 N
+mm of torque in that case) is not modelled.
 """
 from collections import namedtuple
 
@@ -17,7 +30,7 @@ from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import copy_vector, solve_dense
 from sim._math.roots import root_search, root_search_step
 from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, cage_pocket_loads, friction_loads,
-                                  lubrication_state, pocket_skew_couple, roller_friction)
+                                  lubrication_state, outer_rolling_speed, pocket_skew_couple, roller_friction)
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
 # friction moments about the skew axis S (Z,), cage z-moments per roller T (Z,)) with respect to
@@ -67,6 +80,10 @@ KinematicsSettings = namedtuple("KinematicsSettings", [
                     # tolerances); False: an iterate of the friction-load coupling (sim.api.friction_model.
                     # coupled_solution), whose speeds only set the next pass's film and start: one film pass,
                     # solved to seed_factor x the tolerances
+    "held",         # (Z,) bool: rollers resting on the outer raceway alone (outside the load zone,
+                    # sim.solvers.quasi_static): their spin is held at rolling on it
+                    # (sim.physics.friction.outer_rolling_speed) instead of balanced (module docstring),
+                    # the cage drives them
 ])
 
 # First bracket of a roller speed: +-10 % of the start value (rolling kinematics (2.22) or the
@@ -106,6 +123,23 @@ MAX_HALVINGS = 30
 # of the pocket's skew clearance: just beyond it, on the wall's linear penalty branch (the wall
 # solutions of the tests lie 1.0001-1.01 clearances out); numerical choice.
 FREE_SKEW_WALL_START = 1.001
+
+
+# A held roller's spin residual (_spin_residual) reaches its moment tolerance where its speed is
+# within HELD_SPEED_TOLERANCE of rolling on the outer raceway: far below any speed difference that
+# moves a loss (the residual is linear in the speed, so one Newton step meets it).
+HELD_SPEED_TOLERANCE = 1e-9
+
+
+@internal_kernel
+def _spin_residual(j, wR, wc, case, settings, ev):
+    """The spin residual of roller j at speed wR and cage speed wc [rad/s], ``ev`` its
+    evaluation there: the friction moment about its axis [N mm]; for a held roller
+    (``settings.held``) its speed's relative deviation from rolling on the outer raceway,
+    scaled so that HELD_SPEED_TOLERANCE of it is the moment tolerance ``settings.tol_M``."""
+    if settings.held[j]:
+        return settings.tol_M * (wR / outer_rolling_speed(j, wc, case) - 1.0) / HELD_SPEED_TOLERANCE
+    return ev[EV_MU]
 
 
 @internal_kernel
@@ -185,7 +219,13 @@ def _cage_moment(wc, wi, wR, psi, case, settings, ev, totals):
     for j in range(wR.shape[0]):
         if not settings.active[j]:
             continue
-        wj, pj, conv = _solve_roller(j, wR[j], psi[j], wc, wi, case, ev, settings.tol_M, settings.max_iter)
+        if settings.held[j]:
+            wj = outer_rolling_speed(j, wc, case)
+            pj, conv = psi[j], True
+            if case.par.skew:
+                pj, conv = _solve_roller_skew(j, wj, psi[j], wc, wi, case, ev, settings.tol_M, settings.max_iter)
+        else:
+            wj, pj, conv = _solve_roller(j, wR[j], psi[j], wc, wi, case, ev, settings.tol_M, settings.max_iter)
         ok = ok and conv
         wR[j] = wj
         psi[j] = pj
@@ -248,7 +288,7 @@ def _kinematic_residuals(wc, wi, wR, psi, case, settings, ev, res, totals):
         if not settings.active[j]:
             continue
         friction_loads(ev, roller_friction(j, wR[j], psi[j], wc, wi, case, ev), loads[j])
-        M[j] = ev[EV_MU]
+        M[j] = _spin_residual(j, wR[j], wc, case, settings, ev)
         if case.par.skew:
             S[j] = ev[EV_MS]
         T[j] = settings.weight[j] * ev[EV_TZ]
@@ -354,13 +394,13 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
                     continue
                 hj = FD_STEP * abs(wR[j])
                 roller_friction(j, wR[j] + hj, psi[j], wc, wi, case, ev)
-                dMdw[j] = (ev[EV_MU] - M[j]) / hj
+                dMdw[j] = (_spin_residual(j, wR[j] + hj, wc, case, settings, ev) - M[j]) / hj
                 dTdw[j] = (weight[j] * ev[EV_TZ] - T[j]) / hj
                 if skew:
                     dSdw[j] = (ev[EV_MS] - S[j]) / hj
                     hp = FD_STEP * max(abs(psi[j]), par.skew_clearance)
                     roller_friction(j, wR[j], psi[j] + hp, wc, wi, case, ev)
-                    dMdp[j] = (ev[EV_MU] - M[j]) / hp
+                    dMdp[j] = (_spin_residual(j, wR[j], wc, case, settings, ev) - M[j]) / hp
                     dSdp[j] = (ev[EV_MS] - S[j]) / hp
                     dTdp[j] = (weight[j] * ev[EV_TZ] - T[j]) / hp
             known[0] = True
@@ -544,7 +584,7 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
             final = settings.final and film_pass == passes - 1
             loose = FINAL_TOLERANCE_FACTOR if final else settings.seed_factor
             pass_settings = KinematicsSettings(active, weight, loose * settings.tol_M, loose * settings.tol_T,
-                                               settings.max_iter, True, settings.seed_factor, final)
+                                               settings.max_iter, True, settings.seed_factor, final, settings.held)
             start_c = wc
             start_R = wR.copy()
             start_p = psi.copy()
@@ -573,10 +613,11 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
 
 
 @internal_kernel
-def _free_roller_residuals(j, x, wi, case, ev, r):
+def _free_roller_residuals(j, x, push, wi, case, ev, r):
     """Residuals of roller j free in its pocket at x = (omega_R, orbit speed[, psi]) [rad/s, rad]:
-    r = (moment about its axis, z-moment of its contacts and drag about the bearing axis[, moment
-    about the skew axis with the pocket's skew couple]) [N mm]; ``ev`` holds the roller's evaluation
+    r = (moment about its axis, z-moment of its contacts and drag about the bearing axis less
+    ``push``, its share of driving the cage [N mm] (free_roller_speeds)[, moment about the skew
+    axis with the pocket's skew couple]) [N mm]; ``ev`` holds the roller's evaluation
     there (:func:`roller_friction` at its own orbit speed). Returns the pocket friction force along
     v' [N]: the pocket pushes the roller with the tangential force that the z-moment balance leaves
     to its centre, F_D - F_t = M_z / r_c (M_z the contacts' moments about the roller centre, along
@@ -586,14 +627,14 @@ def _free_roller_residuals(j, x, wi, case, ev, r):
     psi = x[2] if x.shape[0] > 2 else 0.0
     F_pocket = roller_friction(j, x[0], psi, x[1], wi, case, ev)
     r[0] = ev[EV_MU]
-    r[1] = ev[EV_TZ]
+    r[1] = ev[EV_TZ] - push
     if x.shape[0] > 2:
         r[2] = ev[EV_MS] + pocket_skew_couple(psi, case.par)[0]
     return F_pocket
 
 
 @internal_kernel
-def _free_roller(j, x, wi, case, ev, tol, max_iter, J, chord):
+def _free_roller(j, x, push, wi, case, ev, tol, max_iter, J, chord):
     """Newton on the residuals of :func:`_free_roller_residuals` from x (written), scaled by
     ``tol``: a step from a Jacobian built here (forward differences) backtracks until the residual
     norm falls; a step from a Jacobian of an earlier point (``J`` in, with ``chord``: the rigid
@@ -606,7 +647,7 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter, J, chord):
     rt = np.empty(m)
     xt = np.empty(m)
     R = np.empty((m, 1))
-    F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)
+    F_pocket = _free_roller_residuals(j, x, push, wi, case, ev, r)
     norm = 0.0
     for a in range(m):
         norm += (r[a] / tol[a]) ** 2
@@ -620,7 +661,7 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter, J, chord):
                 h = FD_STEP * (max(abs(x[2]), case.par.skew_clearance) if b == 2 else abs(x[b]))
                 copy_vector(xt, x)
                 xt[b] += h
-                _free_roller_residuals(j, xt, wi, case, ev, rt)
+                _free_roller_residuals(j, xt, push, wi, case, ev, rt)
                 for a in range(m):
                     J[a, b] = (rt[a] - r[a]) / h
             have = True
@@ -632,7 +673,7 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter, J, chord):
             if not fresh:
                 have = False
                 continue
-            F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the difference points
+            F_pocket = _free_roller_residuals(j, x, push, wi, case, ev, r)     # ev back at x from the difference points
             return False, F_pocket
         step = 1.0
         accepted = False
@@ -641,7 +682,7 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter, J, chord):
         for _ in range(MAX_HALVINGS if fresh else 1):
             for a in range(m):
                 xt[a] = x[a] + step * dx[a, 0]
-            trial_pocket = _free_roller_residuals(j, xt, wi, case, ev, rt)
+            trial_pocket = _free_roller_residuals(j, xt, push, wi, case, ev, rt)
             trial = 0.0
             for a in range(m):
                 trial += (rt[a] / tol[a]) ** 2
@@ -653,7 +694,7 @@ def _free_roller(j, x, wi, case, ev, tol, max_iter, J, chord):
             if not fresh:
                 have = False        # rebuild at x (ev is rebuilt with it)
                 continue
-            F_pocket = _free_roller_residuals(j, x, wi, case, ev, r)     # ev back at x from the rejected trials
+            F_pocket = _free_roller_residuals(j, x, push, wi, case, ev, r)     # ev back at x from the rejected trials
             return False, F_pocket
         copy_vector(x, xt)
         copy_vector(r, rt)
@@ -689,7 +730,8 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, jac):
     coordinate, sim.solvers.dynamic; and zero moment about its skew axis with the pocket's couple),
     each roller on its own (conf/friction/default.yaml, README "Radial loads"). The pocket then
     carries no net traction, only the z-reaction of the moments about the roller centre
-    (:func:`_free_roller_residuals`), with its friction; under a pure axial load, where the rigid
+    (:func:`_free_roller_residuals`), with its friction, and the loaded rollers' shares of driving
+    the held ones (``settings.held``: the cage's only drive); under a pure axial load, where the rigid
     cage's balance is every roller's own, the two guidances coincide. Writes wR, psi, ``totals``
     (NEV,) (weighted sums of the roller evaluations) and ``loads`` (Z, NFL) (friction loads: the
     pocket friction force; with skew the lateral tractions). ``jac``: the rigid solve's
@@ -713,11 +755,29 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, jac):
     converged = True
     for i in range(NEV):
         totals[i] = 0.0
+    # rollers resting on the outer raceway alone (settings.held): nothing but the cage drives their
+    # orbit, at the cage speed with their spin held as in the rigid solution; the cage takes the
+    # z-moment that drives them from the loaded rollers, each pushing it with a share in proportion
+    # to its load (ASSUMED: the pocket play lets the cage rest on the rollers that lead, which the
+    # model does not resolve; README, "Rollers outside the load zone")
+    drive = 0.0
+    pushers = 0.0
     for j in range(Z):
         for a in range(loads.shape[1]):
             loads[j, a] = 0.0
         if not settings.active[j]:
             continue
+        if settings.held[j]:
+            friction_loads(ev, roller_friction(j, wR[j], psi[j], wc, wi, case, ev), loads[j])
+            for i in range(NEV):
+                totals[i] += settings.weight[j] * ev[i]
+            drive -= settings.weight[j] * ev[EV_TZ]
+        else:
+            pushers += settings.weight[j] * case.bearing.q[j].sum()
+    for j in range(Z):
+        if not settings.active[j] or settings.held[j]:
+            continue
+        push = drive * case.bearing.q[j].sum() / pushers
         x[0] = wR[j]
         x[1] = wc
         if skew:
@@ -725,7 +785,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, jac):
         chord = jac.known[0]
         if chord:
             _free_roller_jacobian(jac, j, settings.weight[j], psi[j], case.par, J)
-        ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter, J, chord)
+        ok, F_pocket = _free_roller(j, x, push, wi, case, ev, tol, settings.max_iter, J, chord)
         side = -1.0 if psi[j] < 0.0 else 1.0
         for start in range(2 if skew and not ok else 0):
             # the pocket's skew couple has a kink at |psi| = clearance; where the friction skew moment
@@ -735,7 +795,7 @@ def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, jac):
             x[0] = wR[j]
             x[1] = wc
             x[2] = side * FREE_SKEW_WALL_START * case.par.skew_clearance
-            ok, F_pocket = _free_roller(j, x, wi, case, ev, tol, settings.max_iter, J, False)
+            ok, F_pocket = _free_roller(j, x, push, wi, case, ev, tol, settings.max_iter, J, False)
             if ok:
                 break
             side = -side

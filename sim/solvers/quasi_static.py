@@ -51,9 +51,24 @@ gyroscopic moment I_x omega_R omega_c sin(alpha) (rigid-body dynamics of a rolle
 about its axis while the cage turns about z). External roller loads (friction, from
 :mod:`sim.physics.friction`): per roller [force along u' towards the large end, force along v',
 moment about u' x v'], [N, N, N mm], added to the roller residual like the body loads.
-Rollers that the rings do not squeeze (rigid clearance) are unloaded: the cage holds them,
-their small centrifugal load on the outer ring is neglected and so is any external load on
-them (documented simplification; the dynamic solver treats them fully).
+Rollers that the rings do not squeeze (rigid clearance) carry no load between the rings: the
+cage holds them. With ``QuasiStaticProblem.rest`` (a TRB with the centrifugal force on) such a
+roller rests on the cup and its rib instead, as the time-domain solver's unloaded rollers run:
+the centrifugal force's component along u' pushes it up the cup onto the rib. :func:`solve_roller`
+puts it onto both (:func:`_onto_cup_and_rib`) and solves its equilibrium there like any other,
+the inner raceway touching or not, so that a roller leaving the load zone goes over into its rest
+continuously and the ring's Newton matrix takes its rib stiffness. TRB 31313 at 32.1 / 48.0 kN,
+3821 rpm: 66.0 N on the cup and 33.9 N on the rib per roller, tilt -0.011 deg (the time-domain
+run: 66 N, 32-35 N, -0.011 deg); their EHL rolling loss, which hardly depends on the load, is 9 %
+of the torque (README, "Rollers outside the load zone"). The rest is a second solve from the
+converged one without it (sim.api.bearing_model.BearingModel.solve): from the start the ring's
+iteration stalled where the rest's rib loads are large. A TSRB roller has no rib to hold it along
+its axis and in tilt, and its light contact in the toroidal outer raceway gave no reliable rest
+(tried: held along u' by the cage, it failed on the prototype at 1.5 / 2 kN, 2000 rpm with 20-40
+slices and rested with 60 or more): TSRB rollers outside the load zone stay unloaded, their
+centrifugal load on the outer ring and its rolling loss neglected (documented simplification; the
+dynamic solver treats them fully). A TRB roller released all the same is counted in the report
+(``unrested_rollers``).
 
 Iterative kernels return status flags instead of raising (STYLE.md); the wrapper in
 :mod:`sim.api.bearing_model` decides. Kernels share state through named tuples (STYLE.md):
@@ -84,8 +99,10 @@ NewtonSettings = namedtuple("NewtonSettings", ["tolerance", "max_iterations", "r
 BodyLoads = namedtuple("BodyLoads", ["centrifugal", "gyroscopic"])
 
 # The fixed inputs of one quasi-static solve: sim.physics.roller_contact.BearingArrays,
-# sim.physics.elasticity.SliceElasticity, NewtonSettings, BodyLoads.
-QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", "settings", "body"])
+# sim.physics.elasticity.SliceElasticity, NewtonSettings, BodyLoads, and rest: the rollers that the
+# rings do not squeeze rest on the cup and the rib (module docstring; a TRB with the centrifugal
+# force on, sim.api.bearing_model.BearingModel.solve).
+QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", "settings", "body", "rest"])
 
 # The rollers of a bearing, in and out of solve_bearing (Z rollers, N slices per raceway):
 # poses (Z, 3): xi [mm], eta [mm], theta [rad]; q, active (Z, 2, N): slice line loads [N/mm] and
@@ -100,10 +117,12 @@ RollerSet = namedtuple("RollerSet", ["poses", "q", "active", "Q", "Q_rib", "rib_
 # Newton iterations of the load-controlled roller); residual_axial, residual_radial: force
 # residual on the inner ring [N]; unconverged_classes and loaded_classes: roller classes without
 # equilibrium and loaded ones; roller_iterations (Newton), contact_evaluations (roller_contact
-# calls), ring_backtracks; roller_classes: rollers solved (sim.solvers.symmetry).
+# calls), ring_backtracks; roller_classes: rollers solved (sim.solvers.symmetry); unrested_rollers:
+# rollers outside the load zone released although problem.rest (left unloaded).
 SolveReport = namedtuple("SolveReport", ["converged", "iterations", "residual_axial", "residual_radial",
                                          "unconverged_classes", "loaded_classes", "roller_iterations",
-                                         "contact_evaluations", "ring_backtracks", "roller_classes"])
+                                         "contact_evaluations", "ring_backtracks", "roller_classes",
+                                         "unrested_rollers"])
 
 # Load control of one roller solve: Fa_share, the roller's share Fa / Z of the axial load [N]
 # with the ring's axial displacement a fourth unknown (axisymmetric case), 0 for a fixed ring;
@@ -140,6 +159,14 @@ EXTEND = 0.5
 # tilt step, the tilt times the ends' distance from the centre, END_ARM x Lwe; an extended step
 # travels at most one roller length.
 END_ARM = 0.5
+# A TRB roller that the rings do not squeeze is put onto the cup and the rib (_onto_cup_and_rib)
+# REST_START_DEPTH [mm] into each, 1 nm, far below its approach under its centrifugal force (0.1-2
+# um for the 1-100 N of the rollers here), for solve_roller's bounded Newton steps to go on from;
+# each move along v' or u' opens the other gap by a few percent of itself (the cup and rib angles
+# to v' and u', 4 and 21 deg for the TRB 31313), so REST_CLOSING_MOVES alternations close both to
+# round-off (measured: 2-3).
+REST_START_DEPTH = 1e-6
+REST_CLOSING_MOVES = 8
 
 
 @internal_kernel
@@ -333,8 +360,10 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
     extended while the energy keeps falling: a roller that a wedge of misaligned rings pushes
     out of its contacts has no loaded equilibrium, it comes free and the cage holds it. A
     roller touching one race only is centred between both, unless its loads press it onto
-    that race (it rests there, the other ring does not squeeze it: unloaded). A roller that
-    gets no decrease is reported as not converged and left at its last accepted state.
+    that race (it rests there, the other ring does not squeeze it: unloaded). With
+    ``problem.rest`` a roller the rings do not squeeze is put onto the cup and the rib and solved
+    there (module docstring): no step may take it off the cup. A roller that gets no decrease is
+    reported as not converged and left at its last accepted state.
 
     Parameters
     ----------
@@ -404,13 +433,18 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
 
     def step_bound(K_step):
         """_bounded_step with the roller's current interference scale and ring displacement."""
-        d_step = trust * (depth[0] + depth[1] + max(depth[2], 0.0))
+        d_step = trust * (max(depth[0], 0.0) + max(depth[1], 0.0) + max(depth[2], 0.0))
         ring_step = settings.ring_step_fraction * max(abs(ring[0]), control.ring_scale) if lc else np.inf
         return _bounded_step(K_step, R, m, state.G, state.d, d_step, arm, max_len, ring_step, p)
     evals = 1
     ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
     for it in range(max_iter):
-        if depth[0] + depth[1] <= 0.0:
+        resting = problem.rest and not lc
+        if depth[0] + depth[1] <= 0.0 and not (resting and depth[0] > 0.0):
+            if resting and _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
+                # rings do not squeeze this roller: with problem.rest it rests on the cup and rib
+                evals += 1
+                continue
             if not lc:
                 # rings do not squeeze this roller: unloaded, held by the cage
                 _release(f, state.K, state.q, state.active, Q)
@@ -426,20 +460,27 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
             evals += 1
             continue
         if Q[0] <= 0.0 or Q[1] <= 0.0:
-            # touching one race only. If its loads (contact, body, external) press it onto that
-            # race (along v' outwards onto the outer one, inwards onto the inner one), it rests
-            # there and the other ring does not squeeze it: unloaded as far as the rings' balance
-            # goes (its centrifugal load on the outer ring is neglected, module docstring).
-            # Otherwise, or under load control, centre it along v between both races (rigid
-            # interference balance).
+            # touching one race only. With problem.rest a roller on the cup goes on to its
+            # equilibrium there (module docstring). Otherwise, if its loads (contact, body,
+            # external) press it onto that race (along v' outwards onto the outer one, inwards
+            # onto the inner one), it rests there and the other ring does not squeeze it:
+            # unloaded as far as the rings' balance goes. Otherwise, or under load control,
+            # centre it along v between both races (rigid interference balance).
             _roller_residual(f, pose[2], alpha, Lscale, body, ext, R)
-            if not lc and ((Q[1] <= 0.0 and R[1] >= 0.0) or (Q[0] <= 0.0 and R[1] <= 0.0)):
+            pressed_out = Q[1] <= 0.0 and R[1] >= 0.0
+            if resting and Q[0] > 0.0:
+                # with problem.rest it rests on the cup (and, once the Newton steps close that gap,
+                # on the rib): on to the equilibrium below
+                if depth[2] <= 0.0 and _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
+                    evals += 1
+            elif not lc and (pressed_out or (Q[0] <= 0.0 and R[1] <= 0.0)):
                 _release(f, state.K, state.q, state.active, Q)
                 return 2, it, evals
-            pose[1] += 0.5 * (depth[1] - depth[0])
-            ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
-            evals += 1
-            continue
+            else:
+                pose[1] += 0.5 * (depth[1] - depth[0])
+                ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
+                evals += 1
+                continue
         err = _roller_residual(f, pose[2], alpha, Lscale, body, ext, R)
         scale = Q[0] + Q[1] + Q[2] + abs(body.centrifugal) + abs(ext[0]) + abs(ext[1]) + abs(ext[2]) / Lscale
         done = err <= tol * scale and ok
@@ -476,7 +517,9 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
             for ls in range(nbt + 1):
                 ok_t = try_step(t)
                 evals += 1
-                if trial.depth[0] + trial.depth[1] <= 0.0:
+                if resting and trial.depth[0] <= 0.0:
+                    pass        # off the cup: a shorter step
+                elif trial.depth[0] + trial.depth[1] <= 0.0 and not resting:
                     if not lc:
                         free = True
                         accepted = True
@@ -508,7 +551,9 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
                     continue
                 ok_t = try_step(t)
                 evals += 1
-                if trial.depth[0] + trial.depth[1] <= 0.0:
+                if resting and trial.depth[0] <= 0.0:
+                    continue    # off the cup
+                if trial.depth[0] + trial.depth[1] <= 0.0 and not resting:
                     if not lc:
                         free = True
                         accepted = True
@@ -533,7 +578,9 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
                 try_step(t_try)
                 evals += 1
                 t = t_try
-                if trial.depth[0] + trial.depth[1] <= 0.0:
+                if resting and trial.depth[0] <= 0.0:
+                    break       # off the cup: back to the best step
+                if trial.depth[0] + trial.depth[1] <= 0.0 and not resting:
                     if not lc:
                         free = True
                     break
@@ -598,6 +645,35 @@ def _release(f, K, q, active, Q):
     Q[0] = 0.0
     Q[1] = 0.0
     Q[2] = 0.0
+
+
+@internal_kernel
+def _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
+    """Move a TRB roller that touches neither ring along v' onto the outer raceway (at its
+    nearest slice) and along u' onto the rib, each to a penetration of REST_START_DEPTH, where its
+    centrifugal force takes it (solve_roller with ``problem.rest``); each move opens the other gap
+    a little (the cup and the rib are not square to u' and v'), so they alternate until both
+    touch. Evaluates ``state`` there; returns False where no move closes a gap."""
+    n = bearing.x.shape[0]
+    rib = 2 * n                                  # the rib's row of G and d
+    G = state.G
+    d = state.d
+    depth = state.depth
+    for _ in range(REST_CLOSING_MOVES):
+        k = 0
+        for i in range(n):
+            if d[i] > d[k]:
+                k = i
+        close_outer = depth[0] <= 0.0 and G[k, 1] > 0.0
+        close_rib = depth[2] <= 0.0 and G[rib, 0] > 0.0
+        if not (close_outer or close_rib):
+            return depth[0] > 0.0
+        if close_outer:
+            _local_to_pose(state.pose, 0.0, (REST_START_DEPTH - depth[0]) / G[k, 1], 0.0)
+        if close_rib:
+            _local_to_pose(state.pose, (REST_START_DEPTH - depth[2]) / G[rib, 0], 0.0, 0.0)
+        roller_contact(ring, phi, cpsi, bearing, elasticity, state)
+    return depth[0] > 0.0
 
 
 @kernel
@@ -677,6 +753,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     xcol = np.empty(NQ)
     Fscale = max(Fa, Fr)
     status = np.full(nz, -1, dtype=np.int64)  # -1: no state yet
+    unrested = np.zeros(nz, dtype=np.bool_)     # classes released although problem.rest
     if warm:
         for j in range(nz):
             status[j] = 1
@@ -729,6 +806,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
         Fres[1] = Fr
         Ftrue[0] = Fa
         Ftrue[1] = Fr
+        unrested.fill(False)
         Kc.fill(0.0)
         nbad = 0
         nload = 0
@@ -761,6 +839,8 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
             st, its, nev = solve_roller(ring, phi, cpsi, ext[j], problem, roller_tol, control, state, work)
             roller_its += its
             roller_evals += nev
+            if st == 2 and problem.rest:
+                unrested[j] = True      # released where it should rest: unloaded, counted in the report
             status[j] = st
             rollers.Q[j, 0] = Qc[0]
             rollers.Q[j, 1] = Qc[1]
@@ -956,5 +1036,9 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                 frames.Xrib[j, a] = frames.Xrib[src, a]
             for a in range(4):
                 frames.Ax[j, a] = frames.Ax[src, a]
+    n_unrested = 0
+    for j in range(nz):
+        if unrested[j]:
+            n_unrested += int(mult[j])
     return SolveReport(converged, it_ring + 1, residual_axial, residual_radial, nbad, nload, roller_its, roller_evals,
-                       n_backtracks, nz)
+                       n_backtracks, nz, n_unrested)

@@ -195,7 +195,7 @@ def test_roller_kernel_reports_its_status_honestly(model_for):
     body = model.body_loads(case(4500.0))
     for max_it, expected in ((1, 0), (model.newton.roller_max_iterations, 1)):
         problem = QuasiStaticProblem(model.bearing, model.elasticity,
-                                     model.newton._replace(roller_max_iterations=max_it), body)
+                                     model.newton._replace(roller_max_iterations=max_it), body, False)
         work = RollerWork(empty_roller_contact(n), np.zeros(2), np.zeros(4), np.zeros(4), np.zeros(4), np.zeros(4),
                           np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4))
         state = empty_roller_contact(n)

@@ -256,6 +256,30 @@ def test_steady_state_under_a_radial_load_matches_the_quasi_static_solver(overri
     assert err_c < 0.005
 
 
+def test_rollers_outside_the_load_zone_rest_as_in_the_time_domain():
+    """TRB 31313 at 32.1 / 48.0 kN, 3821 rpm (the case of tests/balance/test_resting_rollers.py):
+    6 of 13 rollers leave the load zone, and in the time domain their centrifugal force (70 N)
+    runs them on the cup and on the rib. The quasi-static solver rests them there
+    (sim.solvers.quasi_static, QuasiStaticProblem.rest): their cup and rib loads must match the time
+    domain's at the same azimuths within 2 % and 10 % (a roller's rib load there scatters
+    32.3-34.6 N over the run, the cup load 65.7-66.2 N), and the torque issue 18's 3 % (the rest
+    and the held spin's rolling loss included; measured 2529.0 N mm against 2589.5, -2.3 %: the
+    time domain's rollers slow by 12 % over the unloaded arc, which the held spin does not follow,
+    sim.solvers.kinematics). Until session 22 the quasi-static solver left them unloaded and read
+    2351 N mm, 7 % below."""
+    overrides = ["bearing=trb_31313", "load.Fa=32100", "load.Fr=48000", "load.speed=3821", "load.oil_temperature=47"]
+    summary, qs, integ = steady_run(overrides)
+    rib = sim.simulate(sim.load_config(overrides)).isel(design=0, case=0).Q_rib.values
+    resting = qs["Q"][:, 1] == 0.0
+    assert resting.sum() == 6
+    assert np.all(summary["Q"][resting, 1] == 0.0)
+    np.testing.assert_allclose(summary["Q"][resting, 0], qs["Q"][resting, 0], rtol=0.02)
+    np.testing.assert_allclose(summary["Q_rib"][resting], rib[resting], rtol=0.10)
+    err_T = summary["torque"] / qs["torque"] - 1.0
+    print(f"torque {summary['torque']:.1f} vs {qs['torque']:.1f} N mm ({err_T:+.3%}), {integ.windows} windows")
+    assert abs(err_T) < 0.03
+
+
 @pytest.fixture(scope="module")
 def skew_run():
     """TRB 32208 with free skew (friction.skew.enabled) from rolling kinematics and no skew, to
@@ -411,8 +435,9 @@ def test_a_roller_touching_its_rib_off_the_load_zone_has_a_rib_film_and_finite_r
     (sim.physics.friction.roller_lubrication). Until session 20 it was held over a window, so a
     roller could touch its rib with no rib film; the rib traction then divided by the film's zero
     rib pressure (ZeroDivisionError before anything ran: TRB 31313 at 32 / 48 kN, 3821 rpm, where
-    at the start state a roller outside the quasi-static load zone touches its rib). At that state
-    every roller on its rib now has a rib film and pays rib friction, and the rates are finite."""
+    at the start state a roller outside the quasi-static load zone touches its rib; since session
+    22 the quasi-static solution rests it there). At that state every roller on its rib now has a
+    rib film and pays rib friction, and the rates are finite."""
     _, _, _, _, dc = dynamic_case(["bearing=trb_31313", "load.Fa=32058", "load.Fr=48018", "load.speed=3821",
                                    "load.oil_temperature=47"])
     integ = Integration(dc.problem, None)
@@ -420,7 +445,8 @@ def test_a_roller_touching_its_rib_off_the_load_zone_has_a_rib_film_and_finite_r
     assert np.isfinite(dy).all()
     on_rib = integ.rol[:, RO_QRIB] > 0.0
     film = dc.problem.case.film
-    assert on_rib.any() and not dc.active[on_rib].all(), "a roller off the quasi-static load zone must touch its rib"
+    between_rings = dc.quasi_static["Q"][:, 1] > 0.0
+    assert on_rib.any() and not between_rings[on_rib].all(), "a roller off the quasi-static load zone must touch its rib"
     assert np.all(film.prib[on_rib] > 0.0) and np.all(film.hrib[on_rib] > 0.0)
     assert integ.tot[TO_P0 + F.COMPONENTS.index("rib")] > 0.0
 

@@ -190,7 +190,7 @@ def synthetic(crown=0.0, tilt_load=0.0):
 
 def _settings(case):
     tol = 1e-6 * 0.1 * 2 * 400.0 * 12.0 * 5.0           # relative 1e-6 of mu Q rho_m, as FrictionModel
-    return KinematicsSettings(np.ones(1, dtype=bool), np.ones(1), tol, tol * 6.0, 60, True, 100.0, True)
+    return KinematicsSettings(np.ones(1, dtype=bool), np.ones(1), tol, tol * 6.0, 60, True, 100.0, True, np.zeros(1, dtype=bool))
 
 
 def test_lateral_traction_vanishes_without_skew_and_grows_with_the_law_slope():
