@@ -280,6 +280,28 @@ def test_rollers_outside_the_load_zone_rest_as_in_the_time_domain():
     assert abs(err_T) < 0.03
 
 
+def test_skewed_rollers_under_a_radial_load_settle_over_whole_cage_turns():
+    """Reference TSRB at 1.26 / 1.18 kN, 6386 rpm, skew free: each roller may rest on either pocket
+    wall, so the steady state repeats with the cage turn, not the roller pass. With windows of one
+    inner-ring turn (7 roller passes) the window means cycled with a period of about 5 windows and
+    no steady state came in 30 (session 21, 231 s); windows of whole cage turns
+    (sim.api.dynamic_model.integration_settings, the rule for free skew under a radial load or a
+    tilt) settle it (measured: 5 windows, 141 s, 850.5 N mm against the free quasi-static 850.7,
+    loads within 8.4e-3 of the largest). Issue 18's targets: loads within 1 %, torque within 3 %,
+    cage speed within 0.5 % (free quasi-static, the default)."""
+    overrides = ["bearing=tsrb_reference", "load.Fa=1260", "load.Fr=1180", "load.speed=6386",
+                 "load.oil_temperature=48", "friction.skew.enabled=true"]
+    model, friction, op, plain, dc = dynamic_case(overrides + ["solver.dynamic.start=rolling"])
+    assert dc.settings.window_angle == pytest.approx(2.0 * np.pi, rel=1e-12)
+    integ = dm.run(dc)
+    assert integ.steady, f"no steady state in {integ.windows} windows"
+    summary, _ = dm.outputs(model, op, dc, integ, 0.0, plain["output"])
+    qs = dc.quasi_static
+    assert np.abs(summary["Q"] - qs["Q"]).max() / qs["Q"].max() < 0.01
+    assert abs(summary["torque"] / qs["torque"] - 1.0) < 0.03
+    assert abs(summary["cage_speed"] / qs["cage_speed"] - 1.0) < 0.005
+
+
 @pytest.fixture(scope="module")
 def skew_run():
     """TRB 32208 with free skew (friction.skew.enabled) from rolling kinematics and no skew, to
