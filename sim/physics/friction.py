@@ -347,7 +347,7 @@ def _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz):
     return wR * (uz * (Xr - cr) - ur * (Xz - cz)), Om * Xr
 
 
-@kernel
+@internal_kernel
 def outer_rolling_speed(j, wc, case):
     """Speed of roller j about its axis [rad/s] at which it rolls on the outer raceway without
     rigid slip at cage speed wc [rad/s] (the outer ring turning at -wc in the cage frame): the

@@ -436,10 +436,10 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
         d_step = trust * (max(depth[0], 0.0) + max(depth[1], 0.0) + max(depth[2], 0.0))
         ring_step = settings.ring_step_fraction * max(abs(ring[0]), control.ring_scale) if lc else np.inf
         return _bounded_step(K_step, R, m, state.G, state.d, d_step, arm, max_len, ring_step, p)
+    resting = problem.rest and not lc     # a roller the rings do not squeeze rests on the cup and rib
     evals = 1
     ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
     for it in range(max_iter):
-        resting = problem.rest and not lc
         if depth[0] + depth[1] <= 0.0 and not (resting and depth[0] > 0.0):
             if resting and _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
                 # rings do not squeeze this roller: with problem.rest it rests on the cup and rib
