@@ -82,6 +82,7 @@ from collections import namedtuple
 import numpy as np
 from scipy.integrate import solve_ivp
 from threadpoolctl import threadpool_limits
+from tqdm import tqdm
 
 from sim._math.jit import kernel
 from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_RING_R, EV_RING_T,
@@ -566,11 +567,13 @@ class Integration:
         self.changes = []
         # one BLAS thread: the dense LU of the Newton matrix (~200 x 200) is 100x slower under
         # OpenBLAS's threads on a shared machine (measured 157 ms against 0.44 ms)
-        with threadpool_limits(1):
-            self._windows(y, s, o_cage, ts, ys, rols, tots)
+        # progress of a long run, one step per window (shown on a terminal only: disable=None)
+        with threadpool_limits(1), tqdm(total=s.max_windows, desc="dynamic windows", unit="window", disable=None,
+                                        leave=False) as bar:
+            self._windows(y, s, o_cage, ts, ys, rols, tots, bar)
         return self
 
-    def _windows(self, y, s, o_cage, ts, ys, rols, tots):
+    def _windows(self, y, s, o_cage, ts, ys, rols, tots, bar):
         history = []
         self.averaged_windows = 1
         t = 0.0
@@ -583,6 +586,7 @@ class Integration:
             if not sol.success:
                 raise RuntimeError(f"dynamic integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
             self.windows = w + 1
+            bar.update()
             self.lu_calls += sol.nlu
             for i in range(sol.t.shape[0]):
                 r, tt = self.outputs(sol.y[:, i])
@@ -621,6 +625,8 @@ class Integration:
                 d_skew = np.abs(means[3] - prev[3]).max() / self.problem.case.par.skew_clearance
                 self.change = (d_speed, d_torque, d_load, d_skew)
                 self.changes.append(self.change)
+                bar.set_postfix_str(f"change: cage speed {d_speed:.1e}, torque {d_torque:.1e}, loads {d_load:.1e}, "
+                                    f"skews {d_skew:.1e}")
                 if (d_speed < s.tol_speed and d_torque < s.tol_torque and d_load < s.tol_load
                         and d_skew < s.tol_skew):
                     self.steady = True
