@@ -2,6 +2,7 @@
 DATA.md outputs derived from it (PyBaMM-style: the model holds parameters, the solver lives in
 :mod:`sim.solvers.quasi_static`, :mod:`sim.api.simulation` joins them).
 """
+import logging
 import time
 from dataclasses import dataclass, fields
 from functools import partial
@@ -19,6 +20,8 @@ from sim.physics.elasticity import (ELASTICITY_MODES, SliceElasticity, edge_inte
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.roller_contact import BearingArrays, empty_frames
 from sim.solvers.quasi_static import BodyLoads, NewtonSettings, QuasiStaticProblem, RollerSet, solve_bearing
+
+log = logging.getLogger(__name__)
 
 # Start of the inner-ring displacement (BearingModel.initial_ring): the line-contact approach of
 # both raceway contacts of an equally loaded roller, 2 x (2 q / (pi E*)) x (ln(L/b) + 1/2 + ln 2)
@@ -274,7 +277,9 @@ class BearingModel:
             poses when converged: slice contact points and normals, roller centres and axes,
             roller-end / rib points), and solver_info (roller iterations, contact evaluations,
             ring backtracks, continuation steps, roller classes solved, rollers outside the load zone
-            left unloaded where no rest on the outer raceway was found).
+            left unloaded where no rest on the outer raceway was found: released by the rest's solve,
+            or all of them where that solve found no equilibrium and the solution without the rest
+            stands, with a warning).
         """
         g = self.geometry
         s = self.settings
@@ -298,9 +303,10 @@ class BearingModel:
                                  f"{op.Fa} N -> {Fa} N (allowed: > 0)")
         body = self.body_loads(op)
         problem = QuasiStaticProblem(self.bearing, self.elasticity, self.newton, body, False)
-        # with the centrifugal force a TRB's rollers outside the load zone rest on the cup and the rib
-        # (sim.solvers.quasi_static, module docstring): a second solve from the converged one
-        resting = problem._replace(rest=True) if body.centrifugal > 0.0 and g.type == "TRB" else None
+        # with the centrifugal force the rollers outside the load zone rest, a TRB's on the cup and the
+        # rib, a TSRB's in the wedge between both raceways (sim.solvers.quasi_static, module docstring):
+        # a second solve from the converged one
+        resting = problem._replace(rest=True) if body.centrifugal > 0.0 else None
         rollers = RollerSet(np.zeros((g.Z, 3)), np.zeros((g.Z, 2, n)), np.zeros((g.Z, 2, n), dtype=np.bool_),
                             np.zeros((g.Z, 2)), np.zeros(g.Z), np.zeros((g.Z, 4)), empty_frames(g.Z, n),
                             np.zeros((g.Z, 2, n)))
@@ -365,21 +371,52 @@ class BearingModel:
             converged = ok and lam == 1.0
             if not converged:
                 ext[:] = ext_case
+        unrested = 0
         if converged and resting is not None and not rested and np.any(rollers.Q.sum(axis=1) == 0.0):
+            without_rest = (ring.copy(), _copy_rollers(rollers), reports[-1])
             converged = run(Fa, Fr, tilt_rad, ring, True, resting)
             iterations += reports[-1].iterations
             steps += 1
+            if not converged:
+                # no equilibrium with the rest (a TSRB roller's shallow wedge, a ring iteration that
+                # stalls on the rests' contacts): the converged solution without it stands, and its
+                # unloaded rollers are reported as left unrested (solver_info)
+                ring[:] = without_rest[0]
+                _restore_rollers(rollers, without_rest[1])
+                reports.append(without_rest[2])
+                unrested = int(np.count_nonzero(rollers.Q.sum(axis=1) == 0.0))
+                converged = True
+                log.warning("%s at Fa = %g N, Fr = %g N, %g rpm, tilt %g deg: no equilibrium with the %d rollers "
+                            "outside the load zone resting; they are left unloaded (their centrifugal contact "
+                            "and its rolling loss neglected)", g.type, op.Fa, op.Fr, op.speed_rpm, op.tilt_deg,
+                            unrested)
         wall_time_s = time.perf_counter() - t0
         pressure = self.hertz_pressure(q)
         last = reports[-1]
         solver_info = dict(roller_iterations=int(totals[0]), contact_evaluations=int(totals[1]),
                            ring_backtracks=int(totals[2]), continuation_steps=steps,
-                           roller_classes=int(last.roller_classes), unrested_rollers=int(last.unrested_rollers))
+                           roller_classes=int(last.roller_classes),
+                           unrested_rollers=max(unrested, int(last.unrested_rollers)))
         return dict(converged=bool(converged), iterations=int(iterations),
                     residual=np.array([last.residual_axial, last.residual_radial]), wall_time=wall_time_s, ring=ring,
                     poses=poses, line_load=q, pressure=pressure, Q=rollers.Q, Q_rib=rollers.Q_rib,
                     rib_contact=rollers.rib_contact, roller_loads=ext, frames=rollers.frames, free=rollers.free,
                     solver_info=solver_info)
+
+
+def _copy_rollers(rollers):
+    """A copy of the arrays of a :data:`sim.solvers.quasi_static.RollerSet` (its frames included)."""
+    return [a.copy() for a in _roller_arrays(rollers)]
+
+
+def _restore_rollers(rollers, saved):
+    """Write the arrays of :func:`_copy_rollers` back into ``rollers`` (in place)."""
+    for a, b in zip(_roller_arrays(rollers), saved):
+        a[...] = b
+
+
+def _roller_arrays(rollers):
+    return [a for a in rollers if isinstance(a, np.ndarray)] + list(rollers.frames)
 
 
 def roller_shift_relative_to_inner_ring(g, xi, ring, tilt):

@@ -52,23 +52,26 @@ about its axis while the cage turns about z). External roller loads (friction, f
 :mod:`sim.physics.friction`): per roller [force along u' towards the large end, force along v',
 moment about u' x v'], [N, N, N mm], added to the roller residual like the body loads.
 Rollers that the rings do not squeeze (rigid clearance) carry no load between the rings: the
-cage holds them. With ``QuasiStaticProblem.rest`` (a TRB with the centrifugal force on) such a
-roller rests on the cup and its rib instead, as the time-domain solver's unloaded rollers run:
-the centrifugal force's component along u' pushes it up the cup onto the rib. :func:`solve_roller`
-puts it onto both (:func:`_onto_cup_and_rib`) and solves its equilibrium there like any other,
-the inner raceway touching or not, so that a roller leaving the load zone goes over into its rest
-continuously and the ring's Newton matrix takes its rib stiffness. TRB 31313 at 32.1 / 48.0 kN,
-3821 rpm: 66.0 N on the cup and 33.9 N on the rib per roller, tilt -0.011 deg (the time-domain
-run: 66 N, 32-35 N, -0.011 deg); their EHL rolling loss, which hardly depends on the load, is 9 %
-of the torque (README, "Rollers outside the load zone"). The rest is a second solve from the
-converged one without it (sim.api.bearing_model.BearingModel.solve): from the start the ring's
-iteration stalled where the rest's rib loads are large. A TSRB roller has no rib to hold it along
-its axis and in tilt, and its light contact in the toroidal outer raceway gave no reliable rest
-(tried: held along u' by the cage, it failed on the prototype at 1.5 / 2 kN, 2000 rpm with 20-40
-slices and rested with 60 or more): TSRB rollers outside the load zone stay unloaded, their
-centrifugal load on the outer ring and its rolling loss neglected (documented simplification; the
-dynamic solver treats them fully). A TRB roller released all the same is counted in the report
-(``unrested_rollers``).
+cage holds them. With ``QuasiStaticProblem.rest`` (the centrifugal force on) such a roller rests
+instead, as the time-domain solver's unloaded rollers run. A TRB roller rests on the cup and its
+rib: the centrifugal force's component along u' pushes it up the cup onto the rib.
+:func:`solve_roller` puts it onto both (:func:`_onto_cup_and_rib`) and solves its equilibrium there
+like any other, the inner raceway touching or not, so that a roller leaving the load zone goes
+over into its rest continuously and the ring's Newton matrix takes its rib stiffness. TRB 31313 at
+32.1 / 48.0 kN, 3821 rpm: 66.0 N on the cup and 33.9 N on the rib per roller, tilt -0.011 deg (the
+time-domain run: 66 N, 32-35 N, -0.011 deg); their EHL rolling loss, which hardly depends on the
+load, is 9 % of the torque (README, "Rollers outside the load zone"). A TSRB has no rib: the outer
+raceway, whose normal is inclined to the roller axis, pushes the roller along its axis into the
+wedge between both raceways until the inner raceway holds it too. :func:`solve_roller` moves it
+there once (:func:`_into_the_wedge`) and then solves it like any other roller, free to leave both
+rings (prototype TSRB at 1.05 / 1.15 kN, 1891 rpm: 4.8-5.1 N on the inner raceway, as in the time
+domain). The rest is a second solve from the converged one without it
+(sim.api.bearing_model.BearingModel.solve): from the start the ring's iteration stalled where the
+rest's rib loads are large. Where that second solve finds no equilibrium (a TSRB's lightest wedged
+rollers, 2-5 N, whose tilt balances the gyroscopic moment on one or two slices; a TRB whose rest's
+rib loads walk the ring's iteration away), the converged solution without the rest stands and its
+unloaded rollers are reported (``unrested_rollers``, and a warning); a roller released by the
+rest's solve itself is counted the same way.
 
 Iterative kernels return status flags instead of raising (STYLE.md); the wrapper in
 :mod:`sim.api.bearing_model` decides. Kernels share state through named tuples (STYLE.md):
@@ -100,8 +103,8 @@ BodyLoads = namedtuple("BodyLoads", ["centrifugal", "gyroscopic"])
 
 # The fixed inputs of one quasi-static solve: sim.physics.roller_contact.BearingArrays,
 # sim.physics.elasticity.SliceElasticity, NewtonSettings, BodyLoads, and rest: the rollers that the
-# rings do not squeeze rest on the cup and the rib (module docstring; a TRB with the centrifugal
-# force on, sim.api.bearing_model.BearingModel.solve).
+# rings do not squeeze rest, a TRB's on the cup and the rib, a TSRB's in the wedge between both
+# raceways (module docstring; the centrifugal force on, sim.api.bearing_model.BearingModel.solve).
 QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", "settings", "body", "rest"])
 
 # The rollers of a bearing, in and out of solve_bearing (Z rollers, N slices per raceway):
@@ -167,6 +170,15 @@ END_ARM = 0.5
 # round-off (measured: 2-3).
 REST_START_DEPTH = 1e-6
 REST_CLOSING_MOVES = 8
+# A TSRB roller (no rib) that the rings do not squeeze is moved into the wedge between both raceways
+# (_into_the_wedge) along u' by at most WEDGE_MAX_TRAVEL x Lwe: the raceways close on a roller by
+# the small angle between its generatrix and theirs (a few degrees), so that a roller of the
+# unloaded side reaches both from some 0.1 mm (pinion_alpha TSRB at 11.4 / 14.4 kN, 1660 rpm, before
+# the rest: the unloaded-side rollers that stayed loaded sat 0.12 mm further along u' than the
+# released ones); a quarter of the roller's
+# length bounds the search well inside the raceway (numerical choice: a roller that reaches no
+# contact within it is released as before).
+WEDGE_MAX_TRAVEL = 0.25
 
 
 @internal_kernel
@@ -436,7 +448,10 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
         d_step = trust * (max(depth[0], 0.0) + max(depth[1], 0.0) + max(depth[2], 0.0))
         ring_step = settings.ring_step_fraction * max(abs(ring[0]), control.ring_scale) if lc else np.inf
         return _bounded_step(K_step, R, m, state.G, state.d, d_step, arm, max_len, ring_step, p)
-    resting = problem.rest and not lc     # a roller the rings do not squeeze rests on the cup and rib
+    # a TRB roller the rings do not squeeze rests on the cup and rib; a TSRB roller is moved into the
+    # wedge between both raceways once before it may be released (module docstring)
+    resting = problem.rest and not lc and bearing.has_rib
+    wedging = problem.rest and not lc and not bearing.has_rib
     evals = 1
     ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
     for it in range(max_iter):
@@ -445,6 +460,11 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
                 # rings do not squeeze this roller: with problem.rest it rests on the cup and rib
                 evals += 1
                 continue
+            if wedging:
+                wedging = False
+                evals += 1
+                if _into_the_wedge(ring, phi, cpsi, bearing, elasticity, state):
+                    continue
             if not lc:
                 # rings do not squeeze this roller: unloaded, held by the cage
                 _release(f, state.K, state.q, state.active, Q)
@@ -473,6 +493,12 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
                 # on the rib): on to the equilibrium below
                 if depth[2] <= 0.0 and _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
                     evals += 1
+            elif wedging and Q[0] > 0.0 and pressed_out:
+                # a TSRB roller on the outer raceway alone: into the wedge once (module docstring)
+                wedging = False
+                evals += 1
+                _into_the_wedge(ring, phi, cpsi, bearing, elasticity, state)
+                continue
             elif not lc and (pressed_out or (Q[0] <= 0.0 and R[1] <= 0.0)):
                 _release(f, state.K, state.q, state.active, Q)
                 return 2, it, evals
@@ -674,6 +700,43 @@ def _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
             _local_to_pose(state.pose, (REST_START_DEPTH - depth[2]) / G[rib, 0], 0.0, 0.0)
         roller_contact(ring, phi, cpsi, bearing, elasticity, state)
     return depth[0] > 0.0
+
+
+@internal_kernel
+def _into_the_wedge(ring, phi, cpsi, bearing, elasticity, state):
+    """Move a TSRB roller (no rib) that touches at most the outer ring along v' onto the outer
+    raceway and along u' into the wedge between both raceways (at their nearest slices), each to a
+    penetration of REST_START_DEPTH, where its centrifugal force and the outer raceway take it
+    (solve_roller with ``problem.rest``, module docstring); the moves alternate until both touch.
+    Evaluates ``state`` there; returns False where no move closes both gaps within
+    WEDGE_MAX_TRAVEL x Lwe along u' (the state is then that of the last move)."""
+    n = bearing.x.shape[0]
+    G = state.G
+    d = state.d
+    depth = state.depth
+    travel = 0.0
+    for _ in range(REST_CLOSING_MOVES):
+        ko = 0
+        ki = n
+        for i in range(n):
+            if d[i] > d[ko]:
+                ko = i
+            if d[n + i] > d[ki]:
+                ki = n + i
+        close_outer = depth[0] <= 0.0 and G[ko, 1] > 0.0
+        close_inner = depth[1] <= 0.0 and G[ki, 0] != 0.0
+        if not (close_outer or close_inner):
+            break
+        if close_outer:
+            _local_to_pose(state.pose, 0.0, (REST_START_DEPTH - depth[0]) / G[ko, 1], 0.0)
+        if close_inner:
+            du = (REST_START_DEPTH - d[ki]) / G[ki, 0]
+            travel += abs(du)
+            if travel > WEDGE_MAX_TRAVEL * bearing.Lwe:
+                return False
+            _local_to_pose(state.pose, du, 0.0, 0.0)
+        roller_contact(ring, phi, cpsi, bearing, elasticity, state)
+    return depth[0] > 0.0 and depth[1] > 0.0
 
 
 @kernel

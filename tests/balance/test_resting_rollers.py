@@ -1,5 +1,6 @@
 """Rollers outside the load zone under their centrifugal force (sim.solvers.quasi_static: a TRB's
-rest on the cup and the rib; their spin held at rolling on the outer raceway, sim.solvers.kinematics).
+rest on the cup and the rib, their spin held at rolling on the outer raceway, sim.solvers.kinematics;
+a TSRB's rest in the wedge between both raceways).
 
 The case: TRB 31313 at Fa 32.1 kN, Fr 48.0 kN, 3821 rpm, FVA 3 at 47 degC, where 6 of the 13
 rollers leave the load zone and the centrifugal force is 70 N per roller. The time-domain solver
@@ -84,3 +85,55 @@ def test_the_torque_of_held_rollers_is_the_power_loss_over_the_speed(guidance):
                                                         "solver.centrifugal=false"])).isel(design=0, case=0)
     rolling = ds.torque_component.sel(component="rolling")
     assert float(rolling) > 1.05 * float(no_rest.torque_component.sel(component="rolling"))
+
+
+PROTOTYPE = ("bearing=tsrb_prototype",)
+OP_TSRB = case(1050.0, 1150.0, speed=1891.0)
+
+
+def test_a_tsrb_roller_outside_the_load_zone_rests_in_the_wedge_between_its_raceways(model_for):
+    """A TSRB has no rib: its roller outside the load zone is pressed onto the outer raceway by its
+    centrifugal force, and the outer raceway's normal, inclined to the roller axis, pushes it along
+    that axis into the wedge between both raceways until the inner raceway holds it too (the time
+    domain finds it there: tests/dynamic/test_ladder.py). Prototype TSRB at 1.05 / 1.15 kN, 1891
+    rpm: without the centrifugal force 6 rollers carry nothing; with it every roller carries load
+    on both raceways, more on the outer one (by about the centrifugal force), each in balance,
+    moments included (recomputed from its pose, tests.helpers.roller_residuals, 1e-8 against the
+    roller tolerance 1e-10 of its load), and the inner ring balances Fa and Fr with all of them."""
+    model, _ = model_for(*PROTOTYPE, "solver.centrifugal=false")
+    bare = model.solve(OP_TSRB)
+    outside = bare["Q"][:, 1] == 0.0
+    assert bare["converged"] and outside.sum() >= 4
+    model, _ = model_for(*PROTOTYPE)
+    raw = model.solve(OP_TSRB)
+    assert raw["converged"] and raw["solver_info"]["unrested_rollers"] == 0
+    assert np.all(raw["Q"] > 0.0)
+    g = model.geometry
+    omega_c = angular_speed(cage_speed_rolling(OP_TSRB.speed_rpm, 0.0, g.Dwe, g.Dpw, g.alpha))
+    Fc = g.arrays["mass"] * omega_c ** 2 * 0.5 * g.Dpw
+    excess = raw["Q"][outside, 0] - raw["Q"][outside, 1]
+    assert np.all((excess > 0.5 * Fc) & (excess < 2.0 * Fc)), (excess, Fc)
+    assert roller_residuals(model, raw, OP_TSRB).max() < 1e-8
+    Fx, Fz = race_forces(model, raw, 1)
+    np.testing.assert_allclose([OP_TSRB.Fr + Fx, OP_TSRB.Fa + Fz], 0.0, atol=1e-8 * OP_TSRB.Fr)
+
+
+def test_where_no_rest_balances_the_solution_without_it_stands_and_its_rollers_are_counted(model_for, caplog):
+    """Prototype TSRB at 1.5 / 2 kN, 2000 rpm with 20 slices: some of its wedged rollers (2-5 N)
+    find no equilibrium within the roller iterations (their tilt balances against the gyroscopic
+    moment on one or two loaded slices), and the ring's iteration with the rest stalls. The solver
+    then keeps the converged solution without the rest (sim.api.bearing_model.BearingModel.solve):
+    converged, its unloaded rollers counted as unrested (solver_info) and named in a warning, each
+    loaded roller in balance. With 40 slices the same case rests every roller (none counted)."""
+    model, _ = model_for(*PROTOTYPE)
+    op = case(1500.0, 2000.0, speed=2000.0)
+    with caplog.at_level("WARNING", logger="sim.api.bearing_model"):
+        raw = model.solve(op)
+    unloaded = int(np.count_nonzero(raw["Q"].sum(axis=1) == 0.0))
+    assert raw["converged"] and unloaded > 0
+    assert raw["solver_info"]["unrested_rollers"] == unloaded
+    assert f"{unloaded} rollers outside the load zone" in caplog.text
+    assert roller_residuals(model, raw, op).max() < 1e-8
+    model, _ = model_for(*PROTOTYPE, "solver.n_slices=40")
+    raw = model.solve(op)
+    assert raw["converged"] and raw["solver_info"]["unrested_rollers"] == 0 and np.all(raw["Q"] > 0.0)
