@@ -35,6 +35,10 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   Jacobians), rhs 0.947 ms; pinion TSRB 12.5 s CPU (1.25 s/rev, 5389 rhs, 180 Jacobians), rhs
   0.981 ms. The work is the same as before (rhs and Jacobian counts); each right-hand side costs
   ~1.6x. Within the 60 s target; the TRB 32208 misses the 20 s goal.
+- 2026-11-28, 57a4784 (session 23), median of 3 runs on the idle machine (load 0.1-0.9): TRB 32208 29.0 s
+  CPU (2.90 s/rev, 11177 rhs, 458 Jacobians), rhs 0.947 ms; pinion TSRB 12.7 s CPU (1.27 s/rev, 5389 rhs,
+  180 Jacobians), rhs 0.975 ms. With ``--set solver.dynamic.start=quasi_static`` (a test run on the other
+  core): 26.9 and 11.2 s, rhs 0.899 and 1.006 ms: the cost is per revolution, not the start's transient.
 
 Run from the repository root::
 
