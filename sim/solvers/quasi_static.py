@@ -175,9 +175,8 @@ REST_CLOSING_MOVES = 8
 # the small angle between its generatrix and theirs (a few degrees), so that a roller of the
 # unloaded side reaches both from some 0.1 mm (pinion_alpha TSRB at 11.4 / 14.4 kN, 1660 rpm, before
 # the rest: the unloaded-side rollers that stayed loaded sat 0.12 mm further along u' than the
-# released ones); a quarter of the roller's
-# length bounds the search well inside the raceway (numerical choice: a roller that reaches no
-# contact within it is released as before).
+# released ones); a quarter of the roller's length bounds the search well inside the raceway
+# (numerical choice: a roller that reaches no contact within it is released as before).
 WEDGE_MAX_TRAVEL = 0.25
 
 
