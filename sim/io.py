@@ -56,6 +56,7 @@ CASE_VARIABLES = {
     "residual": (("direction",), "N", "inner-ring force residual at the solution"),
     "converged": ((), "1", "solver converged"),
     "iterations": ((), "1", "ring Newton iterations"),
+    "unrested_rollers": ((), "1", "rollers outside the load zone left unloaded where they should rest under their centrifugal force (a TRB's on the cup and rib, a TSRB's in the wedge between its raceways): where no equilibrium with the rest was found, the converged solution without it, their contact and its rolling loss neglected (sim.api.bearing_model.BearingModel.solve); 0 from the time-domain solver"),
     "wall_time": ((), "s", "solver wall time of the case"),
 }
 # kernel units (mm, N, s, rad) -> output units (DATA.md): power 1 N mm/s = 1e-3 W, speed
@@ -66,7 +67,7 @@ UM_PER_MM = 1e3
 # written only when some case computed them (friction enabled)
 OPTIONAL_VARIABLES = {"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio",
                       "roller_skew", "skew_sliding"}
-INTEGER_OR_BOOL = {"converged": bool, "edge_stress": bool, "iterations": np.int32}
+INTEGER_OR_BOOL = {"converged": bool, "edge_stress": bool, "iterations": np.int32, "unrested_rollers": np.int32}
 # design coordinates: name -> (units, long_name); the first ones are config inputs, the last three derived
 DESIGN_COORDS = {
     "alpha": ("deg", "roller-axis (mean contact) angle"), "Dpw": ("mm", "pitch diameter"),
@@ -79,7 +80,7 @@ DESIGN_COORDS = {
 # case coordinates (DATA.md), in the order of sim.api.OperatingPoint.values()
 CASE_COORDS = ("Fa", "Fr", "speed", "tilt", "oil_temperature")
 # a point without a result (failed, not computed) holds these; every other variable NaN
-FILL_VALUES = {"converged": False, "edge_stress": False, "iterations": 0}
+FILL_VALUES = {"converged": False, "edge_stress": False, "iterations": 0, "unrested_rollers": 0}
 
 
 @functools.lru_cache(maxsize=1)

@@ -440,7 +440,8 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     g = model.geometry
     n = g.n_slices
     w = g.slice_width
-    res = {"converged": raw["converged"], "iterations": raw["iterations"], "wall_time": raw["wall_time"]}
+    res = {"converged": raw["converged"], "iterations": raw["iterations"], "wall_time": raw["wall_time"],
+           "unrested_rollers": raw["solver_info"]["unrested_rollers"]}
     P = float(ratings.equivalent_dynamic_load(op.Fr, op.Fa, g.ratings_alpha))
     P0 = float(ratings.equivalent_static_load(op.Fr, op.Fa, g.ratings_alpha))
     res.update(P=P, P0=P0)
