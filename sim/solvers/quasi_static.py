@@ -55,7 +55,7 @@ Rollers that the rings do not squeeze (rigid clearance) carry no load between th
 cage holds them. With ``QuasiStaticProblem.rest`` (the centrifugal force on) such a roller rests
 instead, as the time-domain solver's unloaded rollers run. A TRB roller rests on the cup and its
 rib: the centrifugal force's component along u' pushes it up the cup onto the rib.
-:func:`solve_roller` puts it onto both (:func:`_onto_cup_and_rib`) and solves its equilibrium there
+:func:`solve_roller` puts it onto both (:func:`_onto_the_rest`) and solves its equilibrium there
 like any other, the inner raceway touching or not, so that a roller leaving the load zone goes
 over into its rest continuously and the ring's Newton matrix takes its rib stiffness. TRB 31313 at
 32.1 / 48.0 kN, 3821 rpm: 66.0 N on the cup and 33.9 N on the rib per roller, tilt -0.011 deg (the
@@ -63,7 +63,7 @@ time-domain run: 66 N, 32-35 N, -0.011 deg); their EHL rolling loss, which hardl
 load, is 9 % of the torque (README, "Rollers outside the load zone"). A TSRB has no rib: the outer
 raceway, whose normal is inclined to the roller axis, pushes the roller along its axis into the
 wedge between both raceways until the inner raceway holds it too. :func:`solve_roller` moves it
-there once (:func:`_into_the_wedge`) and then solves it like any other roller, free to leave both
+there once (:func:`_onto_the_rest`) and then solves it like any other roller, free to leave both
 rings (prototype TSRB at 1.05 / 1.15 kN, 1891 rpm: 4.8-5.1 N on the inner raceway, as in the time
 domain). The rest is a second solve from the converged one without it
 (sim.api.bearing_model.BearingModel.solve): from the start the ring's iteration stalled where the
@@ -162,7 +162,7 @@ EXTEND = 0.5
 # tilt step, the tilt times the ends' distance from the centre, END_ARM x Lwe; an extended step
 # travels at most one roller length.
 END_ARM = 0.5
-# A TRB roller that the rings do not squeeze is put onto the cup and the rib (_onto_cup_and_rib)
+# A TRB roller that the rings do not squeeze is put onto the cup and the rib (_onto_the_rest)
 # REST_START_DEPTH [mm] into each, 1 nm, far below its approach under its centrifugal force (0.1-2
 # um for the 1-100 N of the rollers here), for solve_roller's bounded Newton steps to go on from;
 # each move along v' or u' opens the other gap by a few percent of itself (the cup and rib angles
@@ -171,12 +171,13 @@ END_ARM = 0.5
 REST_START_DEPTH = 1e-6
 REST_CLOSING_MOVES = 8
 # A TSRB roller (no rib) that the rings do not squeeze is moved into the wedge between both raceways
-# (_into_the_wedge) along u' by at most WEDGE_MAX_TRAVEL x Lwe: the raceways close on a roller by
-# the small angle between its generatrix and theirs (a few degrees), so that a roller of the
-# unloaded side reaches both from some 0.1 mm (pinion_alpha TSRB at 11.4 / 14.4 kN, 1660 rpm, before
-# the rest: the unloaded-side rollers that stayed loaded sat 0.12 mm further along u' than the
-# released ones); a quarter of the roller's length bounds the search well inside the raceway
-# (numerical choice: a roller that reaches no contact within it is released as before).
+# (_onto_the_rest), and a TRB roller onto its rib, along u' by at most WEDGE_MAX_TRAVEL x Lwe: the
+# raceways close on a roller by the small angle between its generatrix and theirs (a few degrees),
+# so that a roller of the unloaded side reaches both from some 0.1 mm (pinion_alpha TSRB at 11.4 /
+# 14.4 kN, 1660 rpm, before the rest: the unloaded-side rollers that stayed loaded sat 0.12 mm
+# further along u' than the released ones; the same bound holds a TRB roller's move onto its rib);
+# a quarter of the roller's length bounds the search well inside the raceway (numerical choice: a
+# roller that reaches no contact within it is released as before).
 WEDGE_MAX_TRAVEL = 0.25
 
 
@@ -455,14 +456,14 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
     ok = roller_contact(ring, phi, cpsi, bearing, elasticity, state)
     for it in range(max_iter):
         if depth[0] + depth[1] <= 0.0 and not (resting and depth[0] > 0.0):
-            if resting and _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
+            if resting and _onto_the_rest(ring, phi, cpsi, bearing, elasticity, state):
                 # rings do not squeeze this roller: with problem.rest it rests on the cup and rib
                 evals += 1
                 continue
             if wedging:
                 wedging = False
                 evals += 1
-                if _into_the_wedge(ring, phi, cpsi, bearing, elasticity, state):
+                if _onto_the_rest(ring, phi, cpsi, bearing, elasticity, state):
                     continue
             if not lc:
                 # rings do not squeeze this roller: unloaded, held by the cage
@@ -490,13 +491,13 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
             if resting and Q[0] > 0.0:
                 # with problem.rest it rests on the cup (and, once the Newton steps close that gap,
                 # on the rib): on to the equilibrium below
-                if depth[2] <= 0.0 and _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
+                if depth[2] <= 0.0 and _onto_the_rest(ring, phi, cpsi, bearing, elasticity, state):
                     evals += 1
             elif wedging and Q[0] > 0.0 and pressed_out:
                 # a TSRB roller on the outer raceway alone: into the wedge once (module docstring)
                 wedging = False
                 evals += 1
-                _into_the_wedge(ring, phi, cpsi, bearing, elasticity, state)
+                _onto_the_rest(ring, phi, cpsi, bearing, elasticity, state)
                 continue
             elif not lc and (pressed_out or (Q[0] <= 0.0 and R[1] <= 0.0)):
                 _release(f, state.K, state.q, state.active, Q)
@@ -673,42 +674,15 @@ def _release(f, K, q, active, Q):
 
 
 @internal_kernel
-def _onto_cup_and_rib(ring, phi, cpsi, bearing, elasticity, state):
-    """Move a TRB roller that touches neither ring along v' onto the outer raceway (at its
-    nearest slice) and along u' onto the rib, each to a penetration of REST_START_DEPTH, where its
-    centrifugal force takes it (solve_roller with ``problem.rest``); each move opens the other gap
-    a little (the cup and the rib are not square to u' and v'), so they alternate until both
-    touch. Evaluates ``state`` there; returns False where no move closes a gap."""
-    n = bearing.x.shape[0]
-    rib = 2 * n                                  # the rib's row of G and d
-    G = state.G
-    d = state.d
-    depth = state.depth
-    for _ in range(REST_CLOSING_MOVES):
-        k = 0
-        for i in range(n):
-            if d[i] > d[k]:
-                k = i
-        close_outer = depth[0] <= 0.0 and G[k, 1] > 0.0
-        close_rib = depth[2] <= 0.0 and G[rib, 0] > 0.0
-        if not (close_outer or close_rib):
-            return depth[0] > 0.0
-        if close_outer:
-            _local_to_pose(state.pose, 0.0, (REST_START_DEPTH - depth[0]) / G[k, 1], 0.0)
-        if close_rib:
-            _local_to_pose(state.pose, (REST_START_DEPTH - depth[2]) / G[rib, 0], 0.0, 0.0)
-        roller_contact(ring, phi, cpsi, bearing, elasticity, state)
-    return depth[0] > 0.0
-
-
-@internal_kernel
-def _into_the_wedge(ring, phi, cpsi, bearing, elasticity, state):
-    """Move a TSRB roller (no rib) that touches at most the outer ring along v' onto the outer
-    raceway and along u' into the wedge between both raceways (at their nearest slices), each to a
-    penetration of REST_START_DEPTH, where its centrifugal force and the outer raceway take it
-    (solve_roller with ``problem.rest``, module docstring); the moves alternate until both touch.
-    Evaluates ``state`` there; returns False where no move closes both gaps within
-    WEDGE_MAX_TRAVEL x Lwe along u' (the state is then that of the last move)."""
+def _onto_the_rest(ring, phi, cpsi, bearing, elasticity, state):
+    """Move a roller that the rings do not squeeze onto its rest under its centrifugal force
+    (solve_roller with ``problem.rest``, module docstring): along v' onto the outer raceway (at its
+    nearest slice) and along u' onto what holds it along its axis, a TRB's rib or a TSRB's inner
+    raceway (the wedge between both raceways; at its nearest slice), each to a penetration of
+    REST_START_DEPTH. Each move opens the other gap a little (neither is square to u' and v'), so
+    they alternate until both touch; the moves along u' travel at most WEDGE_MAX_TRAVEL x Lwe in
+    all. Evaluates ``state`` there; returns whether the roller touches the outer raceway and, a
+    TSRB's, the inner one (the state is that of the last move)."""
     n = bearing.x.shape[0]
     G = state.G
     d = state.d
@@ -716,26 +690,29 @@ def _into_the_wedge(ring, phi, cpsi, bearing, elasticity, state):
     travel = 0.0
     for _ in range(REST_CLOSING_MOVES):
         ko = 0
-        ki = n
+        ka = 2 * n                               # the rib's row of G and d
         for i in range(n):
             if d[i] > d[ko]:
                 ko = i
-            if d[n + i] > d[ki]:
-                ki = n + i
+        if not bearing.has_rib:
+            ka = n
+            for i in range(n, 2 * n):
+                if d[i] > d[ka]:
+                    ka = i
         close_outer = depth[0] <= 0.0 and G[ko, 1] > 0.0
-        close_inner = depth[1] <= 0.0 and G[ki, 0] != 0.0
-        if not (close_outer or close_inner):
+        close_axial = d[ka] <= 0.0 and G[ka, 0] != 0.0
+        if not (close_outer or close_axial):
             break
         if close_outer:
             _local_to_pose(state.pose, 0.0, (REST_START_DEPTH - depth[0]) / G[ko, 1], 0.0)
-        if close_inner:
-            du = (REST_START_DEPTH - d[ki]) / G[ki, 0]
+        if close_axial:
+            du = (REST_START_DEPTH - d[ka]) / G[ka, 0]
             travel += abs(du)
             if travel > WEDGE_MAX_TRAVEL * bearing.Lwe:
                 return False
             _local_to_pose(state.pose, du, 0.0, 0.0)
         roller_contact(ring, phi, cpsi, bearing, elasticity, state)
-    return depth[0] > 0.0 and depth[1] > 0.0
+    return depth[0] > 0.0 and (bearing.has_rib or depth[1] > 0.0)
 
 
 @kernel

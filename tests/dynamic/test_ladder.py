@@ -285,7 +285,7 @@ def test_tsrb_rollers_outside_the_load_zone_rest_in_the_wedge_as_in_the_time_dom
     rigid rings. In the time domain their centrifugal force (1.4 N) runs them on the outer raceway,
     which pushes them along their axis into the wedge between both raceways, where each carries about
     5 N on the inner raceway. The quasi-static solver moves them there (no rib:
-    sim.solvers.quasi_static._into_the_wedge): every roller's raceway loads must match the time
+    sim.solvers.quasi_static._onto_the_rest): every roller's raceway loads must match the time
     domain's at the same azimuths within issue 18's 1 % of the largest load, those rollers' inner
     loads within 10 % each (their scatter over the run; without the rest they read 0), and the torque
     within 3 % (measured +0.13 %: 319.2 against 319.6 N mm; without the rest 315.3, -1.4 %)."""
