@@ -10,13 +10,13 @@ import numpy as np
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
 from sim.physics.contact import hertz_point_radii
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z, FL_U, FL_W, NC,
-                                  NEV, NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, roller_friction,
-                                  width_quadrature)
+from sim.physics.friction import (COMPONENTS, TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z,
+                                  FL_U, FL_W, NC, NEV, NFL, ContactLoads, FilmState, FrictionCase, FrictionParams,
+                                  lubrication_state, roller_friction, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.lubricant import MPA_S_PER_PA_S
-from sim.solvers.symmetry import symmetry_classes
-from sim.solvers.kinematics import KinematicsSettings, empty_jacobian, free_roller_speeds, solve_friction
+from sim.solvers.symmetry import mirror_mean, symmetry_classes
+from sim.solvers.kinematics import FreeRollers, KinematicsSettings, empty_jacobian, free_roller_speeds, solve_friction
 
 # unit conversions of the config (SI, um) to kernel units (mm, N, s, MPa) and of results to output units
 MM_PER_M = 1e3
@@ -150,6 +150,9 @@ class FrictionModel:
             skew_clearance=skew_clearance, skew_stiffness=skew_stiffness)
         self.quad = width_quadrature(friction["width_points"])
         self.rib_end = rib_end_hertz(g.arrays["rib_end"])     # geometry only: once, not per case
+        # the roller's moment of inertia about its axis [t mm^2] (sim.geometry, from its profile and
+        # material.density): the free rollers' spin inertia along the orbit (evaluate)
+        self.roller_spin_inertia = float(g.arrays["inertia_axial"])
 
     def problem(self, op, raw, start=None, final=True):
         """The kinematic problem of one solved case (raw: BearingModel.solve output), as
@@ -209,9 +212,9 @@ class FrictionModel:
         """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
 
         ``start``: the ``kinematics`` entry of a previous evaluation of the same case (cage and
-        roller speeds [rad/s], roller skews [rad], the kinematic Jacobian); the film is then taken at those speeds
-        and one Newton solve follows, starting with that Jacobian, instead of starting from
-        rolling kinematics. ``final`` False: an iterate of :func:`coupled_solution`, whose speeds
+        roller speeds [rad/s], roller skews [rad], the kinematic Jacobian, the free rollers' start); the film
+        is then taken at those speeds and one Newton solve follows, starting with that Jacobian, instead
+        of starting from rolling kinematics, and the free rollers start from their earlier solution. ``final`` False: an iterate of :func:`coupled_solution`, whose speeds
         only start the next pass (:data:`sim.solvers.kinematics.KinematicsSettings` ``final``).
 
         Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
@@ -219,7 +222,8 @@ class FrictionModel:
         N mm), ``friction_converged``, the friction ``roller_loads`` (Z, 3) [N, N, N mm] and their
         reaction ``ring_loads`` (Z, 2) [N] (:meth:`sim.api.bearing_model.BearingModel.solve`), and
         ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s], psi (Z,) [rad],
-        :data:`sim.solvers.kinematics.KinematicJacobian`).
+        :data:`sim.solvers.kinematics.KinematicJacobian`, and with free rollers their orbit speeds
+        (:data:`sim.solvers.kinematics.FreeRollers`), else None).
 
         At ``op.speed_rpm == 0`` the torque is the zero-speed breakaway torque (BREAKAWAY_NOMINAL_SPEED):
         boundary friction along the slip directions at the onset of motion, power loss 0, cage
@@ -236,26 +240,65 @@ class FrictionModel:
         # the friction loads the quasi-static balance takes back (BearingModel.solve(op,
         # roller_loads, ring_loads))
         loads = np.zeros((g.Z, NFL))
-        wc, converged = solve_friction(pb.wc, wR, psi, wi, pb.fresh, case, settings, totals, loads, pb.jac)
-        if (self.free_rollers and self.traction_kinematics and not static and converged
-                and np.count_nonzero(settings.active) > 1):
-            # each loaded roller at its own orbit speed, the pocket carrying only the z-reaction of the
-            # moments about its centre (friction.cage_guidance); the cage speed stays that of the rigid
-            # balance (the dynamic solver's cage speed agrees with it within 7e-4 under radial loads; the
-            # loaded rollers' mean orbit speed deviates by up to 1 %). With one roller class (a pure axial
-            # load) the rigid balance, Z times the roller's z-moment, is the roller's own: the rigid
-            # solution stands (solved again to the free rollers' tolerance it moved the torque by up to
-            # 1.3e-5, 3 of 25 random pinion designs)
-            converged = free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, pb.jac)
+        # free rollers (friction.cage_guidance): each loaded roller at its own orbit speed, the pocket
+        # carrying only the z-reaction of the moments about its centre, its spin changing along the orbit
+        # with its inertia (sim.solvers.kinematics, "Spin inertia"); the cage speed is that of the rigid
+        # balance (the dynamic solver's cage speed agrees with it within 7e-4 under radial loads; the
+        # loaded rollers' mean orbit speed deviates by up to 1 %). A later pass of the load coupling
+        # starts from the free solution of the earlier one (``start``'s fifth entry) and keeps its cage
+        # speed: the friction loads it feeds back are 1e-5 of the roller loads.
+        warm = (start is not None and len(start) > 4 and start[4] is not None and self.free_rollers
+                and self.traction_kinematics and not static)
+        if warm:
+            wc, converged = pb.wc, True
+        else:
+            wc, converged = solve_friction(pb.wc, wR, psi, wi, pb.fresh, case, settings, totals, loads, pb.jac)
+        # With one roller class (a pure axial load) the rigid balance, Z times the roller's z-moment, is
+        # the roller's own and no spin changes along the orbit: the rigid solution stands (solved again to
+        # the free rollers' tolerance it moved the torque by up to 1.3e-5, 3 of 25 random pinion designs)
+        free = (self.free_rollers and self.traction_kinematics and not static and converged
+                and np.count_nonzero(settings.active) > 1)
+        c_spin = 0.0
+        free_start = None
+        if free:
+            # neighbours differ, so every roller is solved on its own: the mirror classes' solution is
+            # spread to the rollers it stands for, with their film
+            Z = g.Z
+            represented = (pb.weight == 0.0) & (load > self.tolerance * load.max())
+            full = settings.active | represented
+            c_spin = self.roller_spin_inertia * wc * Z / (2.0 * np.pi)      # N mm s
+            if warm:
+                free_start = FreeRollers(start[4].orbit.copy(), start[4].J.copy(), start[4].known.copy(), c_spin)
+                lubrication_state(wR, wc, wi, full, case)
+            else:
+                wR[:] = wR[source]
+                psi[:] = psi[source]
+                m = 3 if par.skew else 2
+                free_start = FreeRollers(np.full(Z, wc), np.zeros((Z, m, m)), np.zeros(Z, dtype=np.bool_), c_spin)
+                lubrication_state(wR, wc, wi, represented, case)
+            # the rigid solve's Jacobian per roller: its cage-moment rows are weighted by the classes
+            jac = pb.jac._replace(**{name: getattr(pb.jac, name)[source] / (pb.weight[source] if name.startswith("dT")
+                                                                              else 1.0)
+                                     for name in pb.jac._fields[:-1]})
+            settings = settings._replace(active=full, weight=np.ones(Z),
+                                         held=settings.held | (represented & (raw["Q"][:, 1] == 0.0)))
+            source = np.arange(Z)
+            converged = free_roller_speeds(wc, wi, wR, psi, free_start, case, settings, totals, loads, jac)
         # Gupta's inlet-heating factor is floored at 0 where its pressure term outgrows 1, far beyond its
         # fitted range (thermal loading L of several hundred: FVA 3 below about -30 degC): no film and no
         # rolling loss there is no result, so the case counts as not converged rather than report that torque
-        evaluated = np.unique(source)
+        evaluated = settings.active             # the rollers whose film was taken
         film_lost = not static and bool(np.any((case.film.h[evaluated] == 0.0) & (case.bearing.q[evaluated] > 0.0)))
         wR[:] = wR[source]
         psi[:] = psi[source]
         loads[:] = loads[source]
-        power = totals[EV_P0:EV_P0 + NC]                       # N mm/s
+        power = totals[EV_P0:EV_P0 + NC].copy()                # N mm/s
+        if free:
+            # the free rollers' spin-up slip: the tractions spin each roller from the speed it arrives
+            # with to its own (sim.solvers.kinematics, "Spin inertia"); sum_j M_j omega_j = c_spin / 2
+            # sum_j (omega_j - omega_j-1)^2 over the closed orbit, dissipated as sliding
+            steps = wR - np.roll(wR, 1 if wc >= 0.0 else -1)
+            power[COMPONENTS.index("sliding")] += 0.5 * c_spin * float(steps @ steps)
         srr, film_um, lam = film_outputs(case, load, wc, wR, wi)
         # the torque is power / omega_i where the speeds are imposed: at speed 0 (Coulomb friction, the
         # same at any speed: that of the nominal speed) and with rolling kinematics (2.20), (2.22), whose
@@ -265,10 +308,13 @@ class FrictionModel:
         # each mechanism's power sums to it exactly (it equals power / omega_i up to the kinematic
         # tolerance, module docstring)
         if self.traction_kinematics and not static:
-            # held rollers (sim.solvers.kinematics) lose spin to their friction moment M at the rate
-            # -sum(M omega_R), which the inner ring puts back in the load zone: the torque is the
-            # outer ring's plus that rate over the speed (with held rollers, the power loss over the speed)
-            torque = float(totals[EV_TOUT]) - held_spin_power(settings, wR, psi, wc, wi, case) / wi
+            # with a rigid cage, held rollers (sim.solvers.kinematics) lose spin to their friction moment M
+            # at the rate -sum(M omega_R), which the inner ring puts back in the load zone: the torque is
+            # the outer ring's plus that rate over the speed (with held rollers, the power loss over the
+            # speed); free rollers hold no spin (their spin inertia is solved: the outer ring's torque)
+            torque = float(totals[EV_TOUT])
+            if not free:
+                torque -= held_spin_power(settings, wR, psi, wc, wi, case) / wi
             components = torque * power / power.sum()
             skew_sliding = torque * totals[EV_PSKEW] / power.sum()
         else:
@@ -292,7 +338,7 @@ class FrictionModel:
             "cage_speed": wc * RPM_PER_RAD_S,
             "roller_loads": loads[:, FL_U:FL_W + 1].copy(),
             "ring_loads": loads[:, FL_RING_R:FL_RING_Z + 1].copy(),
-            "kinematics": (wc, wR.copy(), psi.copy(), pb.jac),
+            "kinematics": (wc, wR.copy(), psi.copy(), pb.jac, free_start),
         } | ({"roller_skew": np.degrees(psi), "skew_sliding": float(skew_sliding)} if par.skew else {})
 
 
@@ -375,7 +421,14 @@ def coupled_solution(model, friction, op):
     scale[FL_W] = 1.0 / model.geometry.Lwe          # moments [N mm] over Lwe: forces [N]
 
     def loads(res):
-        return np.hstack([res["roller_loads"], res["ring_loads"]])
+        # the load distribution's ring balance lies in the x-z plane (no y, BearingModel.solve), so its
+        # load case is mirror-symmetric about that plane (sim.solvers.symmetry): it takes the friction
+        # loads' mirror-symmetric part. The free rollers' spin inertia (sim.solvers.kinematics) makes
+        # mirror images differ: without skew by up to half their friction loads (the pocket friction,
+        # 0.002-0.03 N), with skew by 3e-6 of the lateral tractions; below 1e-5 of the largest roller
+        # load (the coupling's tolerance) in the cases of docs/figures/orbit_inertia.md and a skewed TRB
+        # 31313. Left out, that difference keeps the load solve on its mirror classes (half the rollers).
+        return mirror_mean(np.hstack([res["roller_loads"], res["ring_loads"]]))
 
     x = loads(fr)               # the next applied loads (Z, NFL)
     # (g, f) of the passes so far, newest last: the first solve is the pass with applied loads 0, g = x

@@ -9,18 +9,31 @@ the z-moments the contacts exert).
 eliminated); :func:`solve_kinematics` brackets the cage speed, each roller at its own balance
 (slower, but it cannot leave the bracket).
 
+Spin inertia (free rollers, :func:`free_roller_speeds`). Under a radial load a roller crosses
+the azimuths at the cage speed omega_c, so its spin obeys I_x d omega / dt = M(psi, omega), M the
+friction moment about its axis. Balancing M = 0 at each azimuth, as if the roller stayed there,
+sets a lightly loaded roller at the load zone's edge to a speed it has no time to reach (TRB 32208
+at 3 / 8 kN, 6000 rpm: 40 of 1835 rad/s; in the time domain the rollers fall from 1835 to 1531
+rad/s over the unloaded arc and are spun up again when they enter the load zone). Over the Z
+roller azimuths (roller j at 2 pi j / Z, arriving from j - 1 for omega_c > 0) the backward-Euler
+form is M_j(omega_j) = c (omega_j - omega_j-1), c = I_x omega_c Z / (2 pi) [N mm s]; a roller that
+carries nothing keeps its spin. Summed with weights omega_j over the closed orbit, sum M_j omega_j =
+c/2 sum (omega_j - omega_j-1)^2 is the spin energy the tractions put in per unit time, dissipated
+as slip where a roller is spun up (1/2 I_x d omega^2 per pass): the torque is the outer ring's,
+and the power loss the contacts' plus that spin-up slip (sim.api.friction_model, "sliding").
+Measured against the time domain (docs/figures/orbit_inertia.md): TRB 32208 3 / 8 kN, 6000 rpm
+-2.64 % -> +0.02 %; TRB 31313 21.2 / 22.0 kN, 3390 rpm -2.24 % -> -0.14 %.
+
 A TRB's rollers outside the load zone rest on the cup and the rib (sim.solvers.quasi_static).
-Their spin is not balanced but held (``KinematicsSettings.held``) at rolling on the
-outer raceway (:func:`sim.physics.friction.outer_rolling_speed`): such a roller leaves the load
-zone spinning, and its friction moment brakes it only slowly, while balanced on the outer ring
-alone it would skid. TRB 31313 at 32.1 / 48.0 kN, 3821 rpm: at rolling speed (1110 rad/s) its
-moment is -17.9 N mm against a spin I omega of 2.2 N mm s, and its own balance lies at 170-200
-rad/s; the time-domain run slows it from 1111 to 972 rad/s over the 0.019 s it spends outside the
-load zone (a mean moment of 15 N mm), so that the held speed is 6 % above its mean there and its
-rolling loss reads some 10 % high. What the brake takes out of its spin the inner ring puts back
-when it enters the load zone, so the torque of a case with held rollers is the power loss over
-the speed (sim.api.friction_model); the slip of that spin-up (1/2 I (139 rad/s)^2 per pass, 17 N
-mm of torque in that case) is not modelled.
+With free rollers their spin follows the same law (the rib and the cup brake them). With a rigid
+cage (:func:`solve_friction` alone) their spin is not balanced but held (``KinematicsSettings.held``)
+at rolling on the outer raceway (:func:`sim.physics.friction.outer_rolling_speed`): balanced on the
+outer ring alone it would skid (TRB 31313 at 32.1 / 48.0 kN, 3821 rpm: its own balance lies at
+170-200 rad/s against 1110 rad/s rolling), while the time-domain run slows it only from 1111 to 972
+rad/s over the 0.019 s it spends outside the load zone. What the brake takes out of its spin the
+inner ring puts back when it enters the load zone, so the torque of a rigid-cage case with held
+rollers is the power loss over the speed (sim.api.friction_model); the slip of that spin-up is not
+modelled there.
 """
 from collections import namedtuple
 
@@ -81,9 +94,9 @@ KinematicsSettings = namedtuple("KinematicsSettings", [
                     # coupled_solution), whose speeds only set the next pass's film and start: one film pass,
                     # solved to seed_factor x the tolerances
     "held",         # (Z,) bool: rollers resting on the outer raceway alone (outside the load zone,
-                    # sim.solvers.quasi_static): their spin is held at rolling on it
-                    # (sim.physics.friction.outer_rolling_speed) instead of balanced (module docstring),
-                    # the cage drives them
+                    # sim.solvers.quasi_static): the cage drives them; in the rigid solve their spin is
+                    # held at rolling on the outer raceway (sim.physics.friction.outer_rolling_speed)
+                    # instead of balanced, free rollers' spin follows its inertia (module docstring)
 ])
 
 # First bracket of a roller speed: +-10 % of the start value (rolling kinematics (2.22) or the
@@ -612,42 +625,74 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     return wc, converged
 
 
+# What ties a free roller to the rest of the bearing in its residuals (_free_roller_residuals):
+FreeRollerTerms = namedtuple("FreeRollerTerms", [
+    "push",         # N mm: its share of driving the cage, the z-moment its contacts must exert (0 when held)
+    "upstream",     # rad/s: the spin of the roller one slot ahead of it on the orbit
+    "c_spin",       # N mm s: I_x omega_c Z / (2 pi), the spin inertia along the orbit (module docstring)
+    "held",         # bool: on the outer raceway alone (KinematicsSettings.held): it orbits with the cage
+    "wc",           # rad/s: the cage speed
+])
+
+# Scratch of one free roller's Newton solve (_free_roller):
+FreeRollerWork = namedtuple("FreeRollerWork", [
+    "tol",          # (m,) tolerances of the residuals [N mm]
+    "ev",           # (NEV,) the roller's evaluation at the returned x (written)
+    "r",            # (m,) its residuals there (written)
+    "J",            # (m, m) Jacobian: a chord start in (with chord), the last one built out
+])
+
+# The free rollers' solution of one case, kept between the passes of its load coupling
+# (sim.api.friction_model: the kinematics' fifth entry):
+FreeRollers = namedtuple("FreeRollers", [
+    "orbit",        # (Z,) orbit speeds [rad/s]: start in, solution out
+    "J",            # (Z, m, m) each roller's last Jacobian (m = 2, 3 with skew)
+    "known",        # (Z,) bool: J[j] holds one
+    "c_spin",       # N mm s: I_x omega_c Z / (2 pi)
+])
+
+
 @internal_kernel
-def _free_roller_residuals(j, x, push, wi, case, ev, r):
-    """Residuals of roller j free in its pocket at x = (omega_R, orbit speed[, psi]) [rad/s, rad]:
-    r = (moment about its axis, z-moment of its contacts and drag about the bearing axis less
-    ``push``, its share of driving the cage [N mm] (free_roller_speeds)[, moment about the skew
-    axis with the pocket's skew couple]) [N mm]; ``ev`` holds the roller's evaluation
-    there (:func:`roller_friction` at its own orbit speed). Returns the pocket friction force along
-    v' [N]: the pocket pushes the roller with the tangential force that the z-moment balance leaves
-    to its centre, F_D - F_t = M_z / r_c (M_z the contacts' moments about the roller centre, along
-    e_z: the skew couple's, or the planar model's unbalanced skew moment; zero for a roller on its
-    own without them), as in the time domain, where the cage takes the couples' z-reactions through
-    the pockets (free_roller_speeds)."""
+def _free_roller_residuals(j, x, terms, wi, case, tol, ev, r):
+    """Residuals of roller j free in its pocket at x = (omega_R, orbit speed[, psi]) [rad/s, rad]
+    (``terms``: :data:`FreeRollerTerms`): r = (moment about its axis less the spin inertia's c_spin
+    (omega_R - upstream); z-moment of its contacts and drag about the bearing axis less ``push``,
+    or for a held roller its orbit speed's deviation from the cage speed, scaled so that
+    HELD_SPEED_TOLERANCE of it is tol[1][; moment about the skew axis with the pocket's skew
+    couple]) [N mm]; ``ev`` holds the roller's evaluation there (:func:`roller_friction` at its own
+    orbit speed). Returns the pocket friction force along v' [N]: the pocket pushes the roller with
+    the tangential force that the z-moment balance leaves to its centre, F_D - F_t = M_z / r_c (M_z
+    the contacts' moments about the roller centre, along e_z: the skew couple's, or the planar
+    model's unbalanced skew moment; zero for a roller on its own without them), as in the time
+    domain, where the cage takes the couples' z-reactions through the pockets (free_roller_speeds)."""
     psi = x[2] if x.shape[0] > 2 else 0.0
     F_pocket = roller_friction(j, x[0], psi, x[1], wi, case, ev)
-    r[0] = ev[EV_MU]
-    r[1] = ev[EV_TZ] - push
+    r[0] = ev[EV_MU] - terms.c_spin * (x[0] - terms.upstream)
+    if terms.held:
+        r[1] = tol[1] * (x[1] / terms.wc - 1.0) / HELD_SPEED_TOLERANCE
+    else:
+        r[1] = ev[EV_TZ] - terms.push
     if x.shape[0] > 2:
         r[2] = ev[EV_MS] + pocket_skew_couple(psi, case.par)[0]
     return F_pocket
 
 
 @internal_kernel
-def _free_roller(j, x, push, wi, case, ev, tol, max_iter, J, chord):
+def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
     """Newton on the residuals of :func:`_free_roller_residuals` from x (written), scaled by
-    ``tol``: a step from a Jacobian built here (forward differences) backtracks until the residual
-    norm falls; a step from a Jacobian of an earlier point (``J`` in, with ``chord``: the rigid
-    solve's, or this solve's previous one) is kept only where it cuts the squared norm to
-    CHORD_CONTRACTION of its value, else the Jacobian is rebuilt at the same point (the chord and
-    Shamanskii methods, as :func:`solve_kinematics_newton`). Returns (converged, the pocket
-    friction force along v' [N]), with ``ev`` the roller's evaluation at the returned x."""
+    ``work.tol``: a step from a Jacobian built here (forward differences) backtracks until the
+    residual norm falls; a step from a Jacobian of an earlier point (``work.J`` in, with ``chord``:
+    the rigid solve's, or this roller's previous solve's) is kept only where it cuts the squared norm
+    to CHORD_CONTRACTION of its value, else the Jacobian is rebuilt at the same point (the chord and
+    Shamanskii methods, as :func:`solve_kinematics_newton`). Returns (converged, the pocket friction
+    force along v' [N], ``work.J`` holds a Jacobian), with ``work.ev`` the roller's evaluation and
+    ``work.r`` its residuals at the returned x."""
+    tol, ev, r, J = work
     m = x.shape[0]
-    r = np.empty(m)
     rt = np.empty(m)
     xt = np.empty(m)
     R = np.empty((m, 1))
-    F_pocket = _free_roller_residuals(j, x, push, wi, case, ev, r)
+    F_pocket = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)
     norm = 0.0
     for a in range(m):
         norm += (r[a] / tol[a]) ** 2
@@ -655,13 +700,13 @@ def _free_roller(j, x, push, wi, case, ev, tol, max_iter, J, chord):
     fresh = False         # ... built at the present x
     for _ in range(max_iter):
         if norm <= 1.0:
-            return True, F_pocket
+            return True, F_pocket, have
         if not have:
             for b in range(m):
                 h = FD_STEP * (max(abs(x[2]), case.par.skew_clearance) if b == 2 else abs(x[b]))
                 copy_vector(xt, x)
                 xt[b] += h
-                _free_roller_residuals(j, xt, push, wi, case, ev, rt)
+                _free_roller_residuals(j, xt, terms, wi, case, tol, ev, rt)
                 for a in range(m):
                     J[a, b] = (rt[a] - r[a]) / h
             have = True
@@ -673,8 +718,8 @@ def _free_roller(j, x, push, wi, case, ev, tol, max_iter, J, chord):
             if not fresh:
                 have = False
                 continue
-            F_pocket = _free_roller_residuals(j, x, push, wi, case, ev, r)     # ev back at x from the difference points
-            return False, F_pocket
+            F_pocket = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)   # ev back at x from the differences
+            return False, F_pocket, have
         step = 1.0
         accepted = False
         trial = norm
@@ -682,7 +727,7 @@ def _free_roller(j, x, push, wi, case, ev, tol, max_iter, J, chord):
         for _ in range(MAX_HALVINGS if fresh else 1):
             for a in range(m):
                 xt[a] = x[a] + step * dx[a, 0]
-            trial_pocket = _free_roller_residuals(j, xt, push, wi, case, ev, rt)
+            trial_pocket = _free_roller_residuals(j, xt, terms, wi, case, tol, ev, rt)
             trial = 0.0
             for a in range(m):
                 trial += (rt[a] / tol[a]) ** 2
@@ -694,116 +739,243 @@ def _free_roller(j, x, push, wi, case, ev, tol, max_iter, J, chord):
             if not fresh:
                 have = False        # rebuild at x (ev is rebuilt with it)
                 continue
-            F_pocket = _free_roller_residuals(j, x, push, wi, case, ev, r)     # ev back at x from the rejected trials
-            return False, F_pocket
+            F_pocket = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)   # ev back at x from the trials
+            return False, F_pocket, have
         copy_vector(x, xt)
         copy_vector(r, rt)
         norm = trial
         F_pocket = trial_pocket
         fresh = False
-    return norm <= 1.0, F_pocket
+    return norm <= 1.0, F_pocket, have
 
 
 @internal_kernel
-def _free_roller_jacobian(jac, j, weight, psi, par, J):
+def _solve_free_roller(j, x, start, terms, wi, case, work, max_iter, chord):
+    """:func:`_free_roller` from x; with skew, where that fails, again from the start spin
+    start[0] [rad/s] with the skew just beyond each pocket wall, the side of the start skew start[1]
+    [rad] first: the pocket's skew couple has a kink at |psi| = clearance, and where the friction
+    skew moment grows with the skew (no stable skew inside the play) the Newton step from the rigid
+    solution's skew heads across a wall it cannot pass (FREE_SKEW_WALL_START). Returns as
+    :func:`_free_roller`."""
+    ok, F_pocket, have = _free_roller(j, x, terms, wi, case, work, max_iter, chord)
+    side = -1.0 if start[1] < 0.0 else 1.0
+    for _ in range(2 if x.shape[0] > 2 and not ok else 0):
+        x[0] = start[0]
+        x[1] = terms.wc
+        x[2] = side * FREE_SKEW_WALL_START * case.par.skew_clearance
+        ok, F_pocket, have = _free_roller(j, x, terms, wi, case, work, max_iter, have)
+        if ok:
+            break
+        side = -side
+    return ok, F_pocket, have
+
+
+@internal_kernel
+def _free_roller_jacobian(jac, j, psi, par, c_spin, J):
     """The free roller j's Jacobian in x = (omega_R, orbit speed[, psi]) from the rigid solve's
-    (:data:`KinematicJacobian`, of its last Jacobian point): the same residuals M_j, T_j / weight,
-    S_j + pocket couple, the orbit speed in the place of the cage speed, written to J."""
-    J[0, 0] = jac.dMdw[j]
+    (:data:`KinematicJacobian` of its last Jacobian point, per roller: T_j unweighted): the same
+    residuals M_j (with the spin inertia's slope -c_spin [N mm s]), T_j, S_j + pocket couple, the
+    orbit speed in the place of the cage speed, written to J."""
+    J[0, 0] = jac.dMdw[j] - c_spin
     J[0, 1] = jac.dMdc[j]
-    J[1, 0] = jac.dTdw[j] / weight
-    J[1, 1] = jac.dTdc[j] / weight
+    J[1, 0] = jac.dTdw[j]
+    J[1, 1] = jac.dTdc[j]
     if J.shape[0] > 2:
         J[0, 2] = jac.dMdp[j]
-        J[1, 2] = jac.dTdp[j] / weight
+        J[1, 2] = jac.dTdp[j]
         J[2, 0] = jac.dSdw[j]
         J[2, 1] = jac.dSdc[j]
         J[2, 2] = jac.dSdp[j] + pocket_skew_couple(psi, par)[1]
 
 
+# Film of the free rollers (free_roller_speeds): taken again at a roller's speed wherever the solve
+# moved that by more than this fraction from the speed its film was taken at, and the roller solved
+# again. The spin inertia moves the lightly loaded rollers' spins by up to a factor 40 from the rigid
+# solution's (module docstring); the film thickness goes as the entrainment speed^0.67 (Pan &
+# Hamrock 1989), so a spin within 1e-3 of its film's moves the film by < 7e-4 and the torque far less
+# (measured in the tests, tests/friction/test_orbit_inertia.py).
+FREE_FILM_SPIN_TOLERANCE = 1e-3
+
+
+@internal_kernel
+def _orbit_successor(j, direction, Z):
+    """The azimuth slot after slot j along the orbit (direction +-1, the sign of the cage speed)."""
+    return (j + direction + Z) % Z
+
+
 @kernel
-def free_roller_speeds(wc, wi, wR, psi, case, settings, totals, loads, jac):
+def free_roller_speeds(wc, wi, wR, psi, free, case, settings, totals, loads, jac):
     """Rollers free in their cage pockets (``friction.cage_guidance = free``): from the rigid-cage
     solution (cage speed wc [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
-    each loaded roller's own orbit speed and spin speed (and skew): zero moment about its axis and
-    zero z-moment of its contacts and drag about the bearing axis (the time-domain model's orbit
-    coordinate, sim.solvers.dynamic; and zero moment about its skew axis with the pocket's couple),
-    each roller on its own (conf/friction/default.yaml, README "Radial loads"). The pocket then
-    carries no net traction, only the z-reaction of the moments about the roller centre
-    (:func:`_free_roller_residuals`), with its friction, and the loaded rollers' shares of driving
-    the held ones (``settings.held``: the cage's only drive); under a pure axial load, where the rigid
-    cage's balance is every roller's own, the two guidances coincide. Writes wR, psi, ``totals``
-    (NEV,) (weighted sums of the roller evaluations) and ``loads`` (Z, NFL) (friction loads: the
-    pocket friction force; with skew the lateral tractions). ``jac``: the rigid solve's
-    :data:`KinematicJacobian`, whose entries of roller j start its solve as a chord (where it holds
-    one). Tolerances as the rigid solve's last pass (:func:`solve_friction`): FINAL_TOLERANCE_FACTOR
-    (an iterate of the load coupling, not ``settings.final``: ``settings.seed_factor``) x
+    each loaded roller's own orbit speed and spin speed (and skew): zero z-moment of its contacts
+    and drag about the bearing axis (the time-domain model's orbit coordinate, sim.solvers.dynamic;
+    and zero moment about its skew axis with the pocket's couple), and about its axis the friction
+    moment M_j that changes its spin along the orbit (module docstring, "Spin inertia"):
+
+        M_j(omega_j) = c_spin (omega_j - omega_j-1),   c_spin = I_x omega_c Z / (2 pi)   [N mm s]
+                                                           (``free.c_spin``, :data:`FreeRollers`),
+
+    omega_j-1 the spin of the roller one slot ahead of it on the orbit. A roller below the
+    kinematic tolerance (not ``settings.active``) keeps the spin it arrives with; a roller on the
+    outer raceway alone (``settings.held``) orbits with the cage, which drives it (the loaded
+    rollers push the cage with shares in proportion to their loads; ASSUMED: the pocket play lets
+    the cage rest on the rollers that lead, which the model does not resolve; README, "Rollers
+    outside the load zone"), and its spin follows the same law. The pocket then carries no net
+    traction, only the z-reaction of the moments about the roller centre
+    (:func:`_free_roller_residuals`), with its friction, and the held rollers' drive.
+
+    Solved roller by roller along the orbit from the most loaded one (Gauss-Seidel), sweep after
+    sweep, until a sweep finds every roller's residuals within the tolerances at the spin of the
+    roller ahead and the push of that sweep (they are affine in both, so a roller is solved again
+    only where their change takes it out). A loaded roller's moment falls steeply with its spin
+    (dM/domega << -c_spin), so a sweep contracts the spin errors by the product of c_spin / (c_spin -
+    dM/domega) over the rollers: two or three sweeps. Then the film of every roller whose spin
+    moved by more than FREE_FILM_SPIN_TOLERANCE from its film's is taken again there and the sweeps
+    repeated (film passes, at most settings.max_iter, as many sweeps each).
+
+    Every roller is its own class (``settings.weight`` all 1: its neighbours differ); under a pure
+    axial load, where the rigid cage's balance is every roller's own and no spin changes along the
+    orbit, the caller keeps the rigid solution. Writes wR (every roller, the inactive ones at the
+    spin they carry), psi, ``totals`` (NEV,) (sums of the roller evaluations) and ``loads`` (Z,
+    NFL) (friction loads: the pocket friction force; with skew the lateral tractions). Starts: wR,
+    psi and the orbit speeds ``free.orbit`` (solution out). A roller's solve starts as a chord from
+    its Jacobian ``free.J[j]`` where ``free.known[j]`` (an earlier pass of this case's load
+    coupling, sim.api.friction_model), else from ``jac``, the rigid solve's
+    :data:`KinematicJacobian` per roller (its cage-moment entries unweighted), where it holds one
+    and the roller is not held; ``free.J`` and ``free.known`` are written for the next pass.
+    Tolerances as the rigid solve's last pass (:func:`solve_friction`): FINAL_TOLERANCE_FACTOR (an
+    iterate of the load coupling, not ``settings.final``: ``settings.seed_factor``) x
     settings.tol_M on the moments, and on the z-moment x tol_T over the number of rollers. Returns
-    converged (every roller)."""
+    converged (every roller, the sweeps and the film passes)."""
     Z = wR.shape[0]
+    active, held = settings.active, settings.held
+    for j in range(Z):
+        if settings.weight[j] != 1.0:
+            raise ValueError("free_roller_speeds solves every roller on its own: settings.weight must be all 1")
     skew = case.par.skew
     m = 3 if skew else 2
-    x = np.empty(m)
     tol = np.empty(m)
     loose = FINAL_TOLERANCE_FACTOR if settings.final else settings.seed_factor
     tol[0] = loose * settings.tol_M
-    tol[1] = loose * settings.tol_T / max(settings.weight.sum(), 1.0)
+    tol[1] = loose * settings.tol_T / Z
     if skew:
         tol[2] = tol[0]
     ev = np.empty(NEV)
-    J = np.empty((m, m))
-    converged = True
-    for i in range(NEV):
-        totals[i] = 0.0
-    # rollers resting on the outer raceway alone (settings.held): nothing but the cage drives their
-    # orbit, at the cage speed with their spin held as in the rigid solution; the cage takes the
-    # z-moment that drives them from the loaded rollers, each pushing it with a share in proportion
-    # to its load (ASSUMED: the pocket play lets the cage rest on the rollers that lead, which the
-    # model does not resolve; README, "Rollers outside the load zone")
-    drive = 0.0
+    r = np.empty(m)
+    x = np.empty(m)
+    start = np.empty(2)
+    xs = np.empty((Z, m))            # each roller's solution (spin, orbit speed[, skew])
+    res = np.zeros((Z, m))           # its residuals there
+    evs = np.zeros((Z, NEV))         # its evaluation there
+    solved = np.zeros(Z, dtype=np.bool_)    # xs, res, evs hold its solution at its present film
+    orbit, known, c_spin = free.orbit, free.known, free.c_spin
+    up_used = np.zeros(Z)            # the upstream spin and the push its residuals hold
+    push_used = np.zeros(Z)
+    w_film = wR.copy()               # the spins the rollers' film was taken at
+    q = np.zeros(Z)
+    for j in range(Z):
+        xs[j, 0] = wR[j]
+        xs[j, 1] = orbit[j]
+        if skew:
+            xs[j, 2] = psi[j]
+        q[j] = case.bearing.q[j].sum()
+    direction = 1 if wc >= 0.0 else -1
+    first = -1
     pushers = 0.0
     for j in range(Z):
-        for a in range(loads.shape[1]):
-            loads[j, a] = 0.0
-        if not settings.active[j]:
-            continue
-        if settings.held[j]:
-            friction_loads(ev, roller_friction(j, wR[j], psi[j], wc, wi, case, ev), loads[j])
-            for i in range(NEV):
-                totals[i] += settings.weight[j] * ev[i]
-            drive -= settings.weight[j] * ev[EV_TZ]
-        else:
-            pushers += settings.weight[j] * case.bearing.q[j].sum()
+        if active[j] and (first < 0 or q[j] > q[first]):
+            first = j
+        if active[j] and not held[j]:
+            pushers += q[j]
+    # the held rollers' drive, at their start speeds until they are solved
+    drive = 0.0
     for j in range(Z):
-        if not settings.active[j] or settings.held[j]:
-            continue
-        push = drive * case.bearing.q[j].sum() / pushers
-        x[0] = wR[j]
-        x[1] = wc
-        if skew:
-            x[2] = psi[j]
-        chord = jac.known[0]
-        if chord:
-            _free_roller_jacobian(jac, j, settings.weight[j], psi[j], case.par, J)
-        ok, F_pocket = _free_roller(j, x, push, wi, case, ev, tol, settings.max_iter, J, chord)
-        side = -1.0 if psi[j] < 0.0 else 1.0
-        for start in range(2 if skew and not ok else 0):
-            # the pocket's skew couple has a kink at |psi| = clearance; where the friction skew moment
-            # grows with the skew (no stable skew inside the play), the Newton step from the rigid
-            # solution's skew heads across a wall it cannot pass: start just on each wall, the
-            # rigid solution's side first (FREE_SKEW_WALL_START)
-            x[0] = wR[j]
-            x[1] = wc
-            x[2] = side * FREE_SKEW_WALL_START * case.par.skew_clearance
-            ok, F_pocket = _free_roller(j, x, push, wi, case, ev, tol, settings.max_iter, J, False)
-            if ok:
+        if active[j] and held[j]:
+            roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
+            drive -= ev[EV_TZ]
+    converged = False
+    failed = False
+    for _ in range(settings.max_iter):          # film passes
+        settled = False
+        for _ in range(settings.max_iter):      # sweeps along the orbit
+            solves = 0
+            j = first
+            for _ in range(Z):
+                up = xs[(j - direction + Z) % Z, 0]
+                if not active[j]:
+                    xs[j, 0] = up
+                    j = _orbit_successor(j, direction, Z)
+                    continue
+                push = 0.0 if held[j] else drive * q[j] / pushers
+                if solved[j]:
+                    res[j, 0] += c_spin * (up - up_used[j])
+                    if not held[j]:
+                        res[j, 1] -= push - push_used[j]
+                    up_used[j] = up
+                    push_used[j] = push
+                    norm = 0.0
+                    for a in range(m):
+                        norm += (res[j, a] / tol[a]) ** 2
+                    if norm <= 1.0:
+                        j = _orbit_successor(j, direction, Z)
+                        continue
+                for a in range(m):
+                    x[a] = xs[j, a]
+                chord = known[j]
+                if not chord and jac.known[0] and not held[j]:
+                    _free_roller_jacobian(jac, j, xs[j, 2] if skew else 0.0, case.par, c_spin, free.J[j])
+                    chord = True
+                start[0] = wR[j]
+                start[1] = psi[j]
+                ok, F_pocket, known[j] = _solve_free_roller(j, x, start, FreeRollerTerms(push, up, c_spin, held[j], wc),
+                                                            wi, case, FreeRollerWork(tol, ev, r, free.J[j]),
+                                                            settings.max_iter, chord)
+                if not ok:
+                    failed = True
+                    break
+                for a in range(m):
+                    xs[j, a] = x[a]
+                    res[j, a] = r[a]
+                for i in range(NEV):
+                    evs[j, i] = ev[i]
+                friction_loads(ev, F_pocket, loads[j])     # ev: the evaluation at x
+                up_used[j] = up
+                push_used[j] = push
+                solved[j] = True
+                solves += 1
+                j = _orbit_successor(j, direction, Z)
+            if failed:
                 break
-            side = -side
-        converged = ok and converged
-        wR[j] = x[0]
+            drive = 0.0
+            for j in range(Z):
+                if active[j] and held[j]:
+                    drive -= evs[j, EV_TZ]
+            if solves == 0:
+                settled = True
+                break
+        if failed or not settled:
+            break
+        stale = np.zeros(Z, dtype=np.bool_)
+        for j in range(Z):
+            if active[j] and abs(xs[j, 0] - w_film[j]) > FREE_FILM_SPIN_TOLERANCE * abs(w_film[j]):
+                stale[j] = True
+                solved[j] = False
+                w_film[j] = xs[j, 0]
+        if not np.any(stale):
+            converged = True
+            break
+        lubrication_state(w_film, wc, wi, stale, case)
+    for i in range(NEV):
+        totals[i] = 0.0
+    for j in range(Z):
+        wR[j] = xs[j, 0]
+        orbit[j] = xs[j, 1]
+        if not active[j]:
+            for a in range(loads.shape[1]):
+                loads[j, a] = 0.0
+            continue
         if skew:
-            psi[j] = x[2]
-        friction_loads(ev, F_pocket, loads[j])    # ev: the evaluation at x (_free_roller)
+            psi[j] = xs[j, 2]
         for i in range(NEV):
-            totals[i] += settings.weight[j] * ev[i]
+            totals[i] += evs[j, i]
     return converged

@@ -72,3 +72,11 @@ def symmetry_classes(Z, Fr, tilt, roller_loads):
             source[j] = j
             weight[j] = 1.0
     return n_classes, weight, source
+
+
+def mirror_mean(loads):
+    """The mean of each roller's loads (Z, m) in its own frame and its mirror image's (roller Z - j,
+    module docstring): the mirror-symmetric part of per-roller loads, such as the friction loads fed
+    back into the load distribution (sim.api.friction_model.coupled_solution)."""
+    Z = loads.shape[0]
+    return 0.5 * (loads + loads[(Z - np.arange(Z)) % Z])
