@@ -682,9 +682,10 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
     """Newton on the residuals of :func:`_free_roller_residuals` from x (written), scaled by
     ``work.tol``: a step from a Jacobian built here (forward differences) backtracks until the
     residual norm falls; a step from a Jacobian of an earlier point (``work.J`` in, with ``chord``:
-    the rigid solve's, or this roller's previous solve's) is kept only where it cuts the squared norm
-    to CHORD_CONTRACTION of its value, else the Jacobian is rebuilt at the same point (the chord and
-    Shamanskii methods, as :func:`solve_kinematics_newton`). Returns (converged, the pocket friction
+    the rigid solve's, or this roller's previous solve's, updated along every step by
+    :func:`_broyden_update`) is kept only where it cuts the squared norm to CHORD_CONTRACTION of its
+    value, else it is tried once more with that update and then rebuilt at the same point (the chord
+    and Shamanskii methods, as :func:`solve_kinematics_newton`). Returns (converged, the pocket friction
     force along v' [N], ``work.J`` holds a Jacobian), with ``work.ev`` the roller's evaluation and
     ``work.r`` its residuals at the returned x."""
     tol, ev, r, J = work
@@ -698,6 +699,7 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
         norm += (r[a] / tol[a]) ** 2
     have = chord          # J holds a Jacobian
     fresh = False         # ... built at the present x
+    retried = False       # a rejected chord step was retried with the Broyden update at the present x
     for _ in range(max_iter):
         if norm <= 1.0:
             return True, F_pocket, have
@@ -735,18 +737,43 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
                 accepted = True
                 break
             step *= 0.5
-        if not accepted:
-            if not fresh:
-                have = False        # rebuild at x (ev is rebuilt with it)
-                continue
+        if not accepted and fresh:
             F_pocket = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)   # ev back at x from the trials
             return False, F_pocket, have
+        if not accepted:
+            have = False        # rebuild at x (ev is rebuilt with it)
+            continue
+        # Broyden update along the step taken (as solve_kinematics_newton's): the next chord step
+        # uses its secant slope
+        _broyden_update(J, x, xt, r, rt, case.par.skew_clearance)
         copy_vector(x, xt)
         copy_vector(r, rt)
         norm = trial
         F_pocket = trial_pocket
         fresh = False
+        retried = False
     return norm <= 1.0, F_pocket, have
+
+
+@internal_kernel
+def _broyden_update(J, x, xt, r, rt, skew_clearance):
+    """Broyden's (1965) rank-one update of J (m, m) with the secant of the step x -> xt and the
+    residuals r -> rt, least change in the norm of the step scaled by |x| (speeds) and the pocket's
+    skew clearance (skew): J += (dr - J s) (W s)^T / (s^T W s), W = diag(1 / scale^2)."""
+    m = x.shape[0]
+    den = 0.0
+    for b in range(m):
+        scale = skew_clearance if b == 2 else abs(x[b])
+        den += (xt[b] - x[b]) ** 2 / (scale * scale)
+    if den == 0.0:
+        return
+    for a in range(m):
+        miss = rt[a] - r[a]
+        for b in range(m):
+            miss -= J[a, b] * (xt[b] - x[b])
+        for b in range(m):
+            scale = skew_clearance if b == 2 else abs(x[b])
+            J[a, b] += miss * (xt[b] - x[b]) / (scale * scale * den)
 
 
 @internal_kernel
