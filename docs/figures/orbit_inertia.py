@@ -1,28 +1,27 @@
-"""Roller spin inertia along the orbit: an experiment on the quasi-static solution (session 23).
+"""Roller spin inertia along the orbit: the quasi-static solver against an independent solution of
+its equations and against the time domain (session 23's experiment, in the solver since session 24).
 
-The quasi-static kinematics (sim.solvers.kinematics) balance every roller's spin at its azimuth:
-M_j(omega_j) = 0, as if the roller stayed there. In a steady state under a radial load a roller
-crosses the azimuths at the cage speed omega_c, so its spin obeys I_x d omega / dt = M(psi, omega)
-with dpsi / dt = omega_c. Over the Z roller azimuths of the quasi-static solution (roller j at
-2 pi j / Z, arriving from j - 1) the backward-Euler form is
+The quasi-static free rollers (sim.solvers.kinematics, "Spin inertia") carry each roller's spin
+along the orbit: over the Z roller azimuths of the steady state (roller j at 2 pi j / Z, arriving
+from j - 1) the backward-Euler form of I_x d omega / dt = M(psi, omega) with dpsi / dt = omega_c,
 
     M_j(omega_j) = c (omega_j - omega_j-1),   c = I_x omega_c Z / (2 pi)            [N mm]
 
-(I_x the roller's moment of inertia about its axis, sim.api.dynamic_model's DynamicBody). Summed
-with weights omega_j over the closed orbit, sum_j M_j omega_j = c/2 sum_j (omega_j - omega_j-1)^2:
-the spin energy the tractions put in per unit time, which the contacts dissipate as slip where a
-roller is spun up again (1/2 I_x dw^2 per pass, Z omega_c / 2 pi passes per second). The torque of
-the experiment is therefore the contacts' power at the solved speeds plus that term, over the
-inner-ring speed; the outer ring's reaction torque is printed beside it as a check of the
-balance.
+(I_x the roller's moment of inertia about its axis). Summed with weights omega_j over the closed
+orbit, sum_j M_j omega_j = c/2 sum_j (omega_j - omega_j-1)^2: the spin energy the tractions put in
+per unit time, which the contacts dissipate as slip where a roller is spun up again (1/2 I_x dw^2
+per pass). The torque is the contacts' power at the solved speeds plus that term, over the
+inner-ring speed; the outer ring's reaction torque is printed beside it as a check of the balance.
 
-The experiment keeps everything else of the quasi-static solution: its load distribution and its
-cage speed. It solves the Z spins and, as the quasi-static default does (rollers free in their
-pockets, sim.solvers.kinematics.free_roller_speeds), each loaded roller's own orbit speed
-(scipy.optimize.root), with the film of every loaded roller
-(sim.physics.friction.lubrication_state) recomputed at the spins of the previous pass until they
-no longer change. Each case is run by the time-domain solver too
-(steady state from rolling kinematics). Writes orbit_inertia.md beside this file.
+This script solves the same equations on its own, on the solver's load distribution without the
+friction loads fed back (sim.api.friction_model.FrictionModel.evaluate) and with its cage speed:
+the Z spins and each loaded roller's own orbit speed at once (scipy.optimize.root), from the
+rigid cage's speeds (friction.cage_guidance = rigid: each roller balanced at its azimuth, no
+inertia), with the film of every loaded roller (sim.physics.friction.lubrication_state)
+recomputed at the spins of the previous pass until they no longer change. The solver sweeps the
+rollers one by one along the orbit instead (sim.solvers.kinematics.free_roller_speeds). Each case
+is run by the time-domain solver too (steady state from rolling kinematics). Writes
+orbit_inertia.md beside this file.
 
     python docs/figures/orbit_inertia.py            # about 20 min on one core, most of it the dynamic runs
 """
@@ -62,17 +61,21 @@ CASES = {   # the cases of session 23's comparisons (README, dynamic solver)
 
 
 def orbit_experiment(overrides):
-    """(quasi-static torque, experiment torque, its outer-ring torque, quasi-static spins, experiment
-    spins) [N mm, N mm, N mm, rad/s, rad/s] of one case (module docstring)."""
+    """(the solver's torque without the friction loads fed back, this script's torque, its
+    outer-ring torque, the rigid cage's spins, this script's spins) [N mm, N mm, N mm, rad/s,
+    rad/s] of one case (module docstring)."""
     cfg = sim.load_config(overrides)
     plain = resolved(cfg)
     model, friction = build_models(cfg, plain)
     op = operating_points(plain["load"])[0]
     raw = model.solve(op)
     res = friction.evaluate(op, raw)
-    wc, wR, _, _ = res["kinematics"]
+    rigid_cfg = sim.load_config(overrides + ["friction.cage_guidance=rigid"])
+    _, rigid = build_models(rigid_cfg, resolved(rigid_cfg))
+    _, wR, _, _, _ = rigid.evaluate(op, raw)["kinematics"]
+    wc = res["kinematics"][0]
     wi = np.pi * op.speed_rpm / 30.0
-    case = friction.problem(op, raw, start=res["kinematics"]).case
+    case = friction.problem(op, raw).case
     Z = wR.shape[0]
     loaded = raw["Q"].sum(axis=1) + raw["Q_rib"] > 0.0
     lubrication_state(wR.copy(), wc, wi, loaded, case)
@@ -124,7 +127,7 @@ def orbit_experiment(overrides):
 def main():
     rows = []
     for name, overrides in CASES.items():
-        qs, exp, t_out, w_qs, w_exp = orbit_experiment(overrides)
+        solver, exp, t_out, w_rigid, w_exp = orbit_experiment(overrides)
         default = float(sim.simulate(sim.load_config(overrides)).isel(design=0, case=0).torque)
         d = sim.simulate(sim.load_config(overrides + ["solver=dynamic"])).isel(design=0, case=0)
         dyn = float(d.torque)
@@ -132,22 +135,24 @@ def main():
         dyn_cfg = resolved(sim.load_config(overrides + ["solver=dynamic"]))["solver"]["dynamic"]
         samples = int(dyn_cfg["samples_per_window"])
         last = spin[-samples:]          # the last window
-        rows.append((name, default, qs, exp, t_out, dyn, bool(d.converged), w_qs.min() / w_qs.max(),
-                     w_exp.min() / w_exp.max(),
-                     last.min() / last.max()))
+        rows.append((name, default, solver, exp, t_out, dyn, bool(d.converged), w_rigid.min() / w_rigid.max(),
+                     w_exp.min() / w_exp.max(), last.min() / last.max()))
         print(rows[-1], flush=True)
-    lines = ["# Roller spin inertia along the orbit: an experiment (session 23)", "",
+    lines = ["# Roller spin inertia along the orbit: the solver, an independent solution and the time domain", "",
              "Generated by `python docs/figures/orbit_inertia.py` (method in its docstring). Torques in N mm.",
-             "Quasi-static: the default result (`sim.simulate`, friction loads fed back); its solution without that",
-             "feedback is the experiment's start (column 3). Time domain: steady state from rolling kinematics.",
-             "Spin ratio: slowest over fastest roller (time domain: over the last window's samples).", "",
-             "| case | quasi-static | QS without feedback | with spin inertia | its outer-ring torque | time domain "
-             "| QS vs time domain | with inertia vs time domain | spin ratio QS / inertia / time domain |",
+             "Solver: the quasi-static default (`sim.simulate`, friction loads fed back), and its friction",
+             "evaluation without that feedback, on which the independent solution runs. Time domain: steady state",
+             "from rolling kinematics. Spin ratio: slowest over fastest roller (time domain: over the last window's",
+             "samples); the rigid cage's balances each roller at its azimuth, as the free rollers did before session 24.",
+             "",
+             "| case | solver | solver without feedback | independent | its outer-ring torque | time domain "
+             "| solver vs time domain | independent vs solver without feedback | spin ratio rigid cage / independent "
+             "/ time domain |",
              "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
-    for name, default, qs, exp, t_out, dyn, steady, r_qs, r_exp, r_dyn in rows:
-        lines.append(f"| {name} | {default:.1f} | {qs:.1f} | {exp:.1f} | {t_out:.1f} | "
-                     f"{dyn:.1f}{'' if steady else ' (not steady)'} | {default / dyn - 1:+.2%} | {exp / dyn - 1:+.2%} "
-                     f"| {r_qs:.3f} / {r_exp:.3f} / {r_dyn:.3f} |")
+    for name, default, solver, exp, t_out, dyn, steady, r_rigid, r_exp, r_dyn in rows:
+        lines.append(f"| {name} | {default:.1f} | {solver:.1f} | {exp:.1f} | {t_out:.1f} | "
+                     f"{dyn:.1f}{'' if steady else ' (not steady)'} | {default / dyn - 1:+.2%} | "
+                     f"{exp / solver - 1:+.1e} | {r_rigid:.3f} / {r_exp:.3f} / {r_dyn:.3f} |")
     OUT.write_text("\n".join(lines) + "\n")
     print(OUT.read_text())
 

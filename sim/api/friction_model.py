@@ -201,7 +201,8 @@ class FrictionModel:
         mu_ref = max(par.solid.mu_s, par.rheology.c_tau)
         tol_M = self.tolerance * mu_ref * float(load.max()) * bearing.rho_m
         tol_T = self.tolerance * mu_ref * float(load.sum()) * 0.5 * g.Dpw      # at the pitch radius
-        # rollers on the outer raceway alone (outside the load zone, sim.solvers.quasi_static): their spin held
+        # rollers on the outer raceway alone (outside the load zone, sim.solvers.quasi_static): the cage drives
+        # them; the rigid solve holds their spin (sim.solvers.kinematics)
         held = active & (raw["Q"][:, 1] == 0.0)
         settings = KinematicsSettings(active, weight, tol_M, tol_T, self.max_iterations, self.traction_kinematics,
                                       self.seed_tolerance_factor, final, held)
