@@ -682,10 +682,10 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
     """Newton on the residuals of :func:`_free_roller_residuals` from x (written), scaled by
     ``work.tol``: a step from a Jacobian built here (forward differences) backtracks until the
     residual norm falls; a step from a Jacobian of an earlier point (``work.J`` in, with ``chord``:
-    the rigid solve's, or this roller's previous solve's, updated along every step by
+    the rigid solve's, or this roller's previous solve's, updated along every accepted step by
     :func:`_broyden_update`) is kept only where it cuts the squared norm to CHORD_CONTRACTION of its
-    value, else it is tried once more with that update and then rebuilt at the same point (the chord
-    and Shamanskii methods, as :func:`solve_kinematics_newton`). Returns (converged, the pocket friction
+    value, else the Jacobian is rebuilt at the same point (the chord and Shamanskii methods, as
+    :func:`solve_kinematics_newton`). Returns (converged, the pocket friction
     force along v' [N], ``work.J`` holds a Jacobian), with ``work.ev`` the roller's evaluation and
     ``work.r`` its residuals at the returned x."""
     tol, ev, r, J = work
@@ -699,7 +699,6 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
         norm += (r[a] / tol[a]) ** 2
     have = chord          # J holds a Jacobian
     fresh = False         # ... built at the present x
-    retried = False       # a rejected chord step was retried with the Broyden update at the present x
     for _ in range(max_iter):
         if norm <= 1.0:
             return True, F_pocket, have
@@ -751,7 +750,6 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
         norm = trial
         F_pocket = trial_pocket
         fresh = False
-        retried = False
     return norm <= 1.0, F_pocket, have
 
 
