@@ -143,7 +143,7 @@ def main():
              "Solver: the quasi-static default (`sim.simulate`, friction loads fed back), and its friction",
              "evaluation without that feedback, on which the independent solution runs. Time domain: steady state",
              "from rolling kinematics. Spin ratio: slowest over fastest roller (time domain: over the last window's",
-             "samples); the rigid cage's balances each roller at its azimuth, as the free rollers did before session 24.",
+             "samples); the rigid cage balances each roller at its azimuth, as the free rollers did before session 24.",
              "",
              "| case | solver | solver without feedback | independent | its outer-ring torque | time domain "
              "| solver vs time domain | independent vs solver without feedback | spin ratio rigid cage / independent "
