@@ -386,10 +386,13 @@ class BearingModel:
                 reports.append(without_rest[2])
                 unrested = int(np.count_nonzero(rollers.Q.sum(axis=1) == 0.0))
                 converged = True
-                log.warning("%s at Fa = %g N, Fr = %g N, %g rpm, tilt %g deg: no equilibrium with the %d rollers "
-                            "outside the load zone resting; they are left unloaded (their centrifugal contact "
-                            "and its rolling loss neglected)", g.type, op.Fa, op.Fr, op.speed_rpm, op.tilt_deg,
-                            unrested)
+                if start is None or start["solver_info"]["unrested_rollers"] == 0:
+                    # once per case: not again from a start that was warned about (the friction-load
+                    # coupling's later solves, sim.api.friction_model.coupled_solution)
+                    log.warning("%s at Fa = %g N, Fr = %g N, %g rpm, tilt %g deg: no equilibrium with the %d "
+                                "rollers outside the load zone resting; they are left unloaded (their centrifugal "
+                                "contact and its rolling loss neglected)", g.type, op.Fa, op.Fr, op.speed_rpm,
+                                op.tilt_deg, unrested)
         wall_time_s = time.perf_counter() - t0
         pressure = self.hertz_pressure(q)
         last = reports[-1]
