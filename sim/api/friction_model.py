@@ -213,10 +213,12 @@ class FrictionModel:
         """Kinematics, film and friction of one solved case (raw: BearingModel.solve output).
 
         ``start``: the ``kinematics`` entry of a previous evaluation of the same case (cage and
-        roller speeds [rad/s], roller skews [rad], the kinematic Jacobian, the free rollers' start); the film
-        is then taken at those speeds and one Newton solve follows, starting with that Jacobian, instead
-        of starting from rolling kinematics, and the free rollers start from their earlier solution. ``final`` False: an iterate of :func:`coupled_solution`, whose speeds
-        only start the next pass (:data:`sim.solvers.kinematics.KinematicsSettings` ``final``).
+        roller speeds [rad/s], roller skews [rad], the kinematic Jacobian, the free rollers' start);
+        the film is then taken at those speeds and one Newton solve follows, starting with that
+        Jacobian, instead of starting from rolling kinematics (with free rollers: their solve,
+        from their earlier solution, at the earlier cage speed). ``final`` False: an iterate of
+        :func:`coupled_solution`, whose speeds only start the next pass
+        (:data:`sim.solvers.kinematics.KinematicsSettings` ``final``).
 
         Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
         cage speed rpm; with ``friction.skew`` also ``roller_skew`` (Z,) deg and ``skew_sliding``

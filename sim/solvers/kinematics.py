@@ -952,8 +952,9 @@ def free_roller_speeds(wc, wi, wR, psi, free, case, settings, totals, loads, jac
                     chord = True
                 start[0] = wR[j]
                 start[1] = psi[j]
-                ok, F_pocket, known[j] = _solve_free_roller(j, x, start, FreeRollerTerms(push, up, c_spin, held[j], wc),
-                                                            wi, case, FreeRollerWork(tol, ev, r, free.J[j]),
+                terms = FreeRollerTerms(push, up, c_spin, held[j], wc)
+                ok, F_pocket, known[j] = _solve_free_roller(j, x, start, terms, wi, case,
+                                                            FreeRollerWork(tol, ev, r, free.J[j]),
                                                             settings.max_iter, chord)
                 if not ok:
                     failed = True
