@@ -302,6 +302,26 @@ def test_quasi_static_roller_spins_follow_their_inertia_along_the_orbit_as_in_th
     assert summary["torque"] == pytest.approx(qs["torque"], rel=0.01)
 
 
+@pytest.mark.xfail(strict=True, reason=(
+    "free rollers beyond their pocket play: their orbit speeds differ from the cage's by -0.5 to +1.1 %, "
+    "so over one orbit a roller would travel some 1.5 mm in its pocket against the 0.15 mm play; in the "
+    "time domain they run against the pocket walls and the cage carries their tangential tractions, as a "
+    "rigid cage does (1875.3 N mm against rigid 1881.7 and free 1736.4): the quasi-static model has no "
+    "pocket play along the orbit (README, 'Free rollers and their pocket play')"))
+def test_steady_state_of_a_fast_radially_loaded_tsrb_matches_the_quasi_static_solver():
+    """pinion_alpha TSRB at 7.16 / 6.41 kN, 3910 rpm, 52 degC (a random fast case, session 24): issue
+    18's torque target, the time domain within 3 % of the quasi-static default (measured +8.0 %, the
+    cage pocket friction 135 against 2 N mm). The rigid cage, printed beside it, is within 0.3 % of the
+    time domain here: a debt of the free guidance, not of the time domain."""
+    overrides = ["bearing=tsrb_pinion_alpha", "lubricant=pinion_oil", "load.Fa=7160", "load.Fr=6410",
+                 "load.speed=3910", "load.oil_temperature=52"]
+    summary, qs, integ = steady_run(overrides)
+    rigid = sim.simulate(sim.load_config(overrides + ["friction.cage_guidance=rigid"])).isel(design=0, case=0)
+    print(f"torque {summary['torque']:.1f} against the free rollers' {qs['torque']:.1f} and the rigid cage's "
+          f"{float(rigid.torque):.1f} N mm, {integ.windows} windows")
+    assert summary["torque"] == pytest.approx(qs["torque"], rel=0.03)
+
+
 def test_tsrb_rollers_outside_the_load_zone_rest_in_the_wedge_as_in_the_time_domain():
     """Prototype TSRB at 1.05 / 1.15 kN, 1891 rpm: 6 of its 17 rollers leave the load zone of the
     rigid rings. In the time domain their centrifugal force (1.4 N) runs them on the outer raceway,
