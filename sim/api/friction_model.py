@@ -10,9 +10,9 @@ import numpy as np
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
 from sim.physics.contact import hertz_point_radii
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
-from sim.physics.friction import (COMPONENTS, TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z,
-                                  FL_U, FL_W, NC, NEV, NFL, ContactLoads, FilmState, FrictionCase, FrictionParams,
-                                  lubrication_state, roller_friction, width_quadrature)
+from sim.physics.friction import (TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_Z, FL_U, FL_W, NC,
+                                  NEV, NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, lubrication_state,
+                                  roller_friction, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.lubricant import MPA_S_PER_PA_S
 from sim.solvers.symmetry import mirror_mean, symmetry_classes
@@ -261,7 +261,6 @@ class FrictionModel:
         # the free rollers' tolerance it moved the torque by up to 1.3e-5, 3 of 25 random pinion designs)
         free = (self.free_rollers and self.traction_kinematics and not static and converged
                 and np.count_nonzero(settings.active) > 1)
-        c_spin = 0.0
         free_start = None
         if free:
             # neighbours differ, so every roller is solved on its own: the mirror classes' solution is
@@ -295,13 +294,9 @@ class FrictionModel:
         wR[:] = wR[source]
         psi[:] = psi[source]
         loads[:] = loads[source]
-        power = totals[EV_P0:EV_P0 + NC].copy()                # N mm/s
-        if free:
-            # the free rollers' spin-up slip: the tractions spin each roller from the speed it arrives
-            # with to its own (sim.solvers.kinematics, "Spin inertia"); sum_j M_j omega_j = c_spin / 2
-            # sum_j (omega_j - omega_j-1)^2 over the closed orbit, dissipated as sliding
-            steps = wR - np.roll(wR, 1 if wc >= 0.0 else -1)
-            power[COMPONENTS.index("sliding")] += 0.5 * c_spin * float(steps @ steps)
+        # N mm/s; with free rollers the sliding power holds their spin-up slip (sim.solvers.kinematics,
+        # "Spin inertia"): the tractions spin each roller from the speed it arrives with to its own
+        power = totals[EV_P0:EV_P0 + NC]
         srr, film_um, lam = film_outputs(case, load, wc, wR, wi)
         # the torque is power / omega_i where the speeds are imposed: at speed 0 (Coulomb friction, the
         # same at any speed: that of the nominal speed) and with rolling kinematics (2.20), (2.22), whose

@@ -42,8 +42,11 @@ import numpy as np
 from sim._math.jit import internal_kernel, kernel
 from sim._math.linalg import copy_vector, solve_dense
 from sim._math.roots import root_search, root_search_step
-from sim.physics.friction import (EV_MS, EV_MU, EV_TZ, NEV, NFL, cage_pocket_loads, friction_loads,
-                                  lubrication_state, outer_rolling_speed, pocket_skew_couple, roller_friction)
+from sim.physics.friction import (COMPONENTS, EV_MS, EV_MU, EV_P0, EV_TZ, NEV, NFL, cage_pocket_loads,
+                                  friction_loads, lubrication_state, outer_rolling_speed, pocket_skew_couple,
+                                  roller_friction)
+
+SLIDING = COMPONENTS.index("sliding")     # the loss component that takes the free rollers' spin-up slip
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
 # friction moments about the skew axis S (Z,), cage z-moments per roller T (Z,)) with respect to
@@ -138,20 +141,26 @@ MAX_HALVINGS = 30
 FREE_SKEW_WALL_START = 1.001
 
 
-# A held roller's spin residual (_spin_residual) reaches its moment tolerance where its speed is
-# within HELD_SPEED_TOLERANCE of rolling on the outer raceway: far below any speed difference that
-# moves a loss (the residual is linear in the speed, so one Newton step meets it).
+# A speed held at a value (a held roller's spin in the rigid solve, its orbit speed in the free one)
+# meets its residual's tolerance where it is within HELD_SPEED_TOLERANCE of that value: far below any
+# speed difference that moves a loss (the residual is linear in the speed, so one Newton step meets it).
 HELD_SPEED_TOLERANCE = 1e-9
+
+
+@internal_kernel
+def _held_residual(speed, held_at, tol):
+    """The residual of a speed held at ``held_at`` [rad/s]: its relative deviation, scaled so that
+    HELD_SPEED_TOLERANCE of it is the residual's tolerance ``tol`` [N mm]."""
+    return tol * (speed / held_at - 1.0) / HELD_SPEED_TOLERANCE
 
 
 @internal_kernel
 def _spin_residual(j, wR, wc, case, settings, ev):
     """The spin residual of roller j at speed wR and cage speed wc [rad/s], ``ev`` its
     evaluation there: the friction moment about its axis [N mm]; for a held roller
-    (``settings.held``) its speed's relative deviation from rolling on the outer raceway,
-    scaled so that HELD_SPEED_TOLERANCE of it is the moment tolerance ``settings.tol_M``."""
+    (``settings.held``) held at rolling on the outer raceway (:func:`_held_residual`)."""
     if settings.held[j]:
-        return settings.tol_M * (wR / outer_rolling_speed(j, wc, case) - 1.0) / HELD_SPEED_TOLERANCE
+        return _held_residual(wR, outer_rolling_speed(j, wc, case), settings.tol_M)
     return ev[EV_MU]
 
 
@@ -657,8 +666,8 @@ def _free_roller_residuals(j, x, terms, wi, case, tol, ev, r):
     """Residuals of roller j free in its pocket at x = (omega_R, orbit speed[, psi]) [rad/s, rad]
     (``terms``: :data:`FreeRollerTerms`): r = (moment about its axis less the spin inertia's c_spin
     (omega_R - upstream); z-moment of its contacts and drag about the bearing axis less ``push``,
-    or for a held roller its orbit speed's deviation from the cage speed, scaled so that
-    HELD_SPEED_TOLERANCE of it is tol[1][; moment about the skew axis with the pocket's skew
+    or for a held roller its orbit speed held at the cage speed (:func:`_held_residual`)[; moment
+    about the skew axis with the pocket's skew
     couple]) [N mm]; ``ev`` holds the roller's evaluation there (:func:`roller_friction` at its own
     orbit speed). Returns the pocket friction force along v' [N]: the pocket pushes the roller with
     the tangential force that the z-moment balance leaves to its centre, F_D - F_t = M_z / r_c (M_z
@@ -669,7 +678,7 @@ def _free_roller_residuals(j, x, terms, wi, case, tol, ev, r):
     F_pocket = roller_friction(j, x[0], psi, x[1], wi, case, ev)
     r[0] = ev[EV_MU] - terms.c_spin * (x[0] - terms.upstream)
     if terms.held:
-        r[1] = tol[1] * (x[1] / terms.wc - 1.0) / HELD_SPEED_TOLERANCE
+        r[1] = _held_residual(x[1], terms.wc, tol[1])
     else:
         r[1] = ev[EV_TZ] - terms.push
     if x.shape[0] > 2:
@@ -996,6 +1005,10 @@ def free_roller_speeds(wc, wi, wR, psi, free, case, settings, totals, loads, jac
     for j in range(Z):
         wR[j] = xs[j, 0]
         orbit[j] = xs[j, 1]
+        # the spin-up slip, sum_j M_j omega_j = c_spin / 2 sum_j (omega_j - omega_j-1)^2 over the closed
+        # orbit (module docstring, "Spin inertia"), with the sliding power
+        step = xs[j, 0] - xs[(j - direction + Z) % Z, 0]
+        totals[EV_P0 + SLIDING] += 0.5 * c_spin * step * step
         if not active[j]:
             for a in range(loads.shape[1]):
                 loads[j, a] = 0.0
