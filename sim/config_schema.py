@@ -288,6 +288,7 @@ class SkewConfig:
     enabled: bool = key(Flag())
     pocket_clearance: Any = key(Number(0.0, 5.0, low_open=True, units="mm"))
     pocket_stiffness: Any = key(Number(0.0, 1e9, low_open=True, units="N/mm"))
+    pocket_transition: Any = key(Number(0.0, 1.0, low_open=True, units="mm"))
 
 
 @dataclass
@@ -347,7 +348,6 @@ class DynamicConfig:
     rtol: Any = key(Number(1e-12, 1e-2, low_open=True))
     contact_damping_ratio: Any = key(Number(0.0, 2.0))
     pocket_damping_ratio: Any = key(Number(0.0, 2.0))
-    pocket_transition: Any = key(Number(0.0, 1.0, low_open=True, units="mm"))
     inner_ring_mass: Any = key(Number(0.0, 1e4, low_open=True, units="kg"))
     cage_inertia: Any = key(Number(0.0, 1e3, low_open=True, units="kg m^2"))
     window_revolutions: Any = key(Number(0.0, 1e3, low_open=True))

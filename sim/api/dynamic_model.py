@@ -52,7 +52,7 @@ def body_and_state(model, friction, op, dyn, raw, kin):
         I_cage=KG_M2_TO_T_MM2 * float(dyn["cage_inertia"]), r_pocket=0.5 * g.Dpw, k_pocket=k_pocket,
         # damper of a ratio zeta on a mass-spring k, m: c = 2 zeta sqrt(k m) (any vibration text)
         c_pocket=2.0 * zeta_p * np.sqrt(k_pocket * m),
-        half_play=0.5 * friction.pocket_clearance, pocket_transition=float(dyn["pocket_transition"]),
+        half_play=0.5 * friction.pocket_clearance, pocket_transition=friction.pocket_transition,
         c_skew=2.0 * zeta_p * np.sqrt(par.skew_stiffness * Iy), beta=0.0, Fa=float(op.Fa), Fr=float(op.Fr), wi=wi,
         skew=bool(par.skew), friction=True)
     y0 = np.zeros(state_size(Z))

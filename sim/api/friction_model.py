@@ -133,6 +133,7 @@ class FrictionModel:
         skew_stiffness = 0.5 * float(skew["pocket_stiffness"]) * g.Lwe ** 2
         self.pocket_clearance = float(skew["pocket_clearance"])     # mm, the dynamic solver's pocket too
         self.pocket_stiffness = float(skew["pocket_stiffness"])     # N/mm per roller end
+        self.pocket_transition = float(skew["pocket_transition"])   # mm, the walls' onset (sim.physics.friction.pocket_wall_force)
         # the per-case fields (eta0, eta0_inner, alpha, Z, rheology.tau_E0, beta, drag_k: oil temperature) are set by
         # problem()
         self.par = FrictionParams(
@@ -268,24 +269,28 @@ class FrictionModel:
             Z = g.Z
             represented = (pb.weight == 0.0) & (load > self.tolerance * load.max())
             full = settings.active | represented
-            c_spin = self.roller_spin_inertia * wc * Z / (2.0 * np.pi)      # N mm s
+            # N mm s^2; mm; N/mm, both roller ends (as the time domain's, sim.api.dynamic_model); mm
+            pocket = (self.roller_spin_inertia, 0.5 * self.pocket_clearance, 2.0 * self.pocket_stiffness,
+                      self.pocket_transition, 0.5 * g.Dpw)
             if warm:
-                free_start = FreeRollers(start[4].orbit.copy(), start[4].J.copy(), start[4].known.copy(), c_spin)
+                free_start = FreeRollers(start[4].orbit.copy(), start[4].gap.copy(), np.array([wc]),
+                                         start[4].slope.copy(), start[4].J.copy(), start[4].known.copy(), *pocket)
                 lubrication_state(wR, wc, wi, full, case)
             else:
                 wR[:] = wR[source]
                 psi[:] = psi[source]
                 m = 3 if par.skew else 2
-                free_start = FreeRollers(np.full(Z, wc), np.zeros((Z, m, m)), np.zeros(Z, dtype=np.bool_), c_spin)
+                free_start = FreeRollers(np.full(Z, wc), np.zeros(Z), np.array([wc]), np.zeros(1), np.zeros((Z, m, m)),
+                                         np.zeros(Z, dtype=np.bool_), *pocket)
                 lubrication_state(wR, wc, wi, represented, case)
             # the rigid solve's Jacobian per roller: its cage-moment rows are weighted by the classes
             jac = pb.jac._replace(**{name: getattr(pb.jac, name)[source] / (pb.weight[source] if name.startswith("dT")
                                                                               else 1.0)
                                      for name in pb.jac._fields[:-1]})
-            settings = settings._replace(active=full, weight=np.ones(Z),
-                                         held=settings.held | (represented & (raw["Q"][:, 1] == 0.0)))
+            settings = settings._replace(active=full, weight=np.ones(Z))
             source = np.arange(Z)
-            converged = free_roller_speeds(wc, wi, wR, psi, free_start, case, settings, totals, loads, jac)
+            converged = free_roller_speeds(wi, wR, psi, free_start, case, settings, totals, loads, jac)
+            wc = float(free_start.wc[0])
         # Gupta's inlet-heating factor is floored at 0 where its pressure term outgrows 1, far beyond its
         # fitted range (thermal loading L of several hundred: FVA 3 below about -30 degC): no film and no
         # rolling loss there is no result, so the case counts as not converged rather than report that torque

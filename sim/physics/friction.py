@@ -693,6 +693,26 @@ def rate_slip(rates, inner, dr, dz, ar, az, ur, uz):
     return s_t, s_a
 
 
+@internal_kernel
+def pocket_wall_force(g, half_play, k_pocket, transition):
+    """Spring force of a cage pocket's walls on a roller at g [mm] from the pocket's centre along
+    the orbit (at the pocket radius): 0 inside the play, |g| <= half_play [mm]; beyond it, at the
+    depth pen = |g| - half_play, -k_pocket pen sign(g) [N] (k_pocket [N/mm]: both roller ends), its
+    onset smoothed over ``transition`` [mm] to first order (k pen^2 / (2 transition) below it, k (pen -
+    transition / 2) beyond; as MSC Adams' IMPACT function; 0: none). Returns (the force [N], the
+    cubic step 3 s^2 - 2 s^3 of s = pen / transition that ramps a damper in (1 beyond, 0 inside)).
+    The time domain (sim.solvers.dynamic) adds its damper; the free rollers' quasi-static solution
+    (sim.solvers.kinematics, "Pocket play") takes the spring alone."""
+    pen = abs(g) - half_play
+    if pen <= 0.0:
+        return 0.0, 0.0
+    sg = 1.0 if g > 0.0 else -1.0
+    if pen < transition:
+        s = pen / transition
+        return -sg * k_pocket * pen * pen / (2.0 * transition), s * s * (3.0 - 2.0 * s)
+    return -sg * k_pocket * (pen - 0.5 * transition), 1.0
+
+
 @kernel
 def roller_friction(j, wR, psi, wc, wi, case, ev):
     """Friction of roller j at roller speed wR [rad/s], skew psi [rad] and cage speed wc [rad/s],

@@ -87,7 +87,8 @@ from tqdm import tqdm
 from sim._math.jit import kernel
 from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_RING_R, EV_RING_T,
                                   EV_RING_Z, EV_TOUT, EV_TZ, NC, NEV, RollerRates, film_scratch, pocket_friction,
-                                  pocket_skew_couple, roller_drag, roller_lubrication, roller_traction)
+                                  pocket_skew_couple, pocket_wall_force, roller_drag, roller_lubrication,
+                                  roller_traction)
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
@@ -309,25 +310,10 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
         # cage pocket: circumferential penalty and damper at the pitch radius
         g = body.r_pocket * (phi - y[o_cage] - 2.0 * np.pi * j / Z)
         gdot = body.r_pocket * (wphi - wc)
-        pen = abs(g) - body.half_play
-        Fp = 0.0
-        Fs = 0.0
-        if pen > 0.0:
-            sg = 1.0 if g > 0.0 else -1.0
-            # onset smooth to first order over the transition depth d_s (as MSC Adams' IMPACT
-            # function): spring k pen^2 / (2 d_s) below d_s, k (pen - d_s / 2) beyond; damper
-            # ramped in by the cubic step 3 s^2 - 2 s^3, s = pen / d_s
-            d_s = body.pocket_transition
-            ramp = 1.0
-            if pen < d_s:
-                s_ = pen / d_s
-                ramp = s_ * s_ * (3.0 - 2.0 * s_)
-                Fs = -sg * body.k_pocket * pen * pen / (2.0 * d_s)
-            else:
-                Fs = -sg * body.k_pocket * (pen - 0.5 * d_s)
-            Fp = Fs - ramp * body.c_pocket * gdot
-            if Fp * sg > 0.0:   # a damper never pulls the roller into the wall
-                Fp = 0.0
+        Fs, ramp = pocket_wall_force(g, body.half_play, body.k_pocket, body.pocket_transition)
+        Fp = Fs - ramp * body.c_pocket * gdot
+        if Fp * Fs < 0.0:   # a damper never pulls the roller into the wall
+            Fp = 0.0
         Ft_ += Fp
         P_pocket = -Fp * gdot          # pocket work on the relative motion (spring + damper)
         Tcage = -Fp * body.r_pocket     # reaction on the cage about z

@@ -44,9 +44,10 @@ from sim._math.linalg import copy_vector, solve_dense
 from sim._math.roots import root_search, root_search_step
 from sim.physics.friction import (COMPONENTS, EV_MS, EV_MU, EV_P0, EV_TZ, NEV, NFL, cage_pocket_loads,
                                   friction_loads, lubrication_state, outer_rolling_speed, pocket_skew_couple,
-                                  roller_friction)
+                                  pocket_wall_force, roller_friction)
 
 SLIDING = COMPONENTS.index("sliding")     # the loss component that takes the free rollers' spin-up slip
+CAGE = COMPONENTS.index("cage")           # ... and their pocket walls' work (free_roller_speeds)
 
 # The arrow-shaped Jacobian of the kinematic residuals (roller spin moments M (Z,), with skew the
 # friction moments about the skew axis S (Z,), cage z-moments per roller T (Z,)) with respect to
@@ -636,11 +637,16 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
 
 # What ties a free roller to the rest of the bearing in its residuals (_free_roller_residuals):
 FreeRollerTerms = namedtuple("FreeRollerTerms", [
-    "push",         # N mm: its share of driving the cage, the z-moment its contacts must exert (0 when held)
     "upstream",     # rad/s: the spin of the roller one slot ahead of it on the orbit
-    "c_spin",       # N mm s: I_x omega_c Z / (2 pi), the spin inertia along the orbit (module docstring)
-    "held",         # bool: on the outer raceway alone (KinematicsSettings.held): it orbits with the cage
+    "c_spin",       # N mm s: I_x |omega_c| Z / (2 pi), the spin inertia along the orbit (module docstring)
     "wc",           # rad/s: the cage speed
+    "base",         # mm: its place in its pocket at the slot's start (from the pocket's centre, + ahead)
+    "reach",        # mm s: r_pocket dt, the place it moves over the slot's passage dt per rad/s of orbit
+                    # speed above the cage's
+    "half_play",    # mm: half the pocket's circumferential play
+    "k_pocket",     # N/mm: the pocket walls' stiffness (both roller ends)
+    "transition",   # mm: depth over which it sets in
+    "r_pocket",     # mm: radius of the pocket contact
 ])
 
 # Scratch of one free roller's Newton solve (_free_roller):
@@ -655,35 +661,61 @@ FreeRollerWork = namedtuple("FreeRollerWork", [
 # (sim.api.friction_model: the kinematics' fifth entry):
 FreeRollers = namedtuple("FreeRollers", [
     "orbit",        # (Z,) orbit speeds [rad/s]: start in, solution out
+    "gap",          # (Z,) each roller's place in its pocket at the end of its slot, from the pocket's centre at
+                    # the pocket radius, + ahead [mm]: start in, solution out
+    "wc",           # (1,) the cage speed [rad/s]: start in (the rigid cage's), solution out
+    "slope",        # (1,) the last secant slope of the cage balance in the cage speed [N mm s] (< 0; 0: none):
+                    # start in (an earlier pass's), out
     "J",            # (Z, m, m) each roller's last Jacobian (m = 2, 3 with skew)
     "known",        # (Z,) bool: J[j] holds one
-    "c_spin",       # N mm s: I_x omega_c Z / (2 pi)
+    "inertia",      # N mm s^2: I_x, the roller's moment of inertia about its axis
+    "half_play",    # mm: half the pocket's circumferential play (friction.skew.pocket_clearance / 2)
+    "k_pocket",     # N/mm: the pocket walls' stiffness, both roller ends (2 friction.skew.pocket_stiffness)
+    "transition",   # mm: depth over which it sets in (friction.skew.pocket_transition)
+    "r_pocket",     # mm: radius of the pocket contact (the pitch radius, as the time domain's)
 ])
+
+
+@internal_kernel
+def _pocket_moment(orbit, terms):
+    """z-moment [N mm] of the pocket walls (:func:`pocket_wall_force`, the spring alone) on a roller at
+    the end of its slot, its place moved from ``terms.base`` at the orbit speed ``orbit`` [rad/s]
+    (:data:`FreeRollerTerms`; module docstring, "Pocket play")."""
+    place = terms.base + terms.reach * (orbit - terms.wc)
+    return terms.r_pocket * pocket_wall_force(place, terms.half_play, terms.k_pocket, terms.transition)[0]
+
+
+@internal_kernel
+def _free_residuals_at(x, ev, terms, tol, par, r):
+    """Residuals of a free roller at x = (omega_R, orbit speed[, psi]) [rad/s, rad] from its
+    evaluation ``ev`` there (:func:`roller_friction`), written to r [N mm] (:func:`_free_roller_residuals`);
+    returns their squared norm scaled by ``tol``."""
+    r[0] = ev[EV_MU] - terms.c_spin * (x[0] - terms.upstream)
+    r[1] = ev[EV_TZ] + _pocket_moment(x[1], terms)
+    if x.shape[0] > 2:
+        r[2] = ev[EV_MS] + pocket_skew_couple(x[2], par)[0]
+    norm = 0.0
+    for a in range(x.shape[0]):
+        norm += (r[a] / tol[a]) ** 2
+    return norm
 
 
 @internal_kernel
 def _free_roller_residuals(j, x, terms, wi, case, tol, ev, r):
     """Residuals of roller j free in its pocket at x = (omega_R, orbit speed[, psi]) [rad/s, rad]
     (``terms``: :data:`FreeRollerTerms`): r = (moment about its axis less the spin inertia's c_spin
-    (omega_R - upstream); z-moment of its contacts and drag about the bearing axis less ``push``,
-    or for a held roller its orbit speed held at the cage speed (:func:`_held_residual`)[; moment
-    about the skew axis with the pocket's skew
-    couple]) [N mm]; ``ev`` holds the roller's evaluation there (:func:`roller_friction` at its own
-    orbit speed). Returns the pocket friction force along v' [N]: the pocket pushes the roller with
-    the tangential force that the z-moment balance leaves to its centre, F_D - F_t = M_z / r_c (M_z
-    the contacts' moments about the roller centre, along e_z: the skew couple's, or the planar
-    model's unbalanced skew moment; zero for a roller on its own without them), as in the time
-    domain, where the cage takes the couples' z-reactions through the pockets (free_roller_speeds)."""
+    (omega_R - upstream); z-moment of its contacts and drag about the bearing axis and of the pocket
+    walls at its place at the slot's end (:func:`_pocket_moment`)[; moment about the skew axis with
+    the pocket's skew couple]) [N mm]; ``ev`` holds the roller's evaluation there
+    (:func:`roller_friction` at its own orbit speed). Returns (the pocket friction force along v'
+    [N], the residuals' squared norm scaled by ``tol``): the pocket pushes the roller with the
+    tangential force its z-moment balance leaves, F_D - F_t: the walls' force and M_z / r_c (M_z the
+    contacts' moments about the roller centre, along e_z: the skew couple's, or the planar model's
+    unbalanced skew moment; zero for a roller on its own without them), as in the time domain,
+    where the cage takes the couples' z-reactions through the pockets."""
     psi = x[2] if x.shape[0] > 2 else 0.0
     F_pocket = roller_friction(j, x[0], psi, x[1], wi, case, ev)
-    r[0] = ev[EV_MU] - terms.c_spin * (x[0] - terms.upstream)
-    if terms.held:
-        r[1] = _held_residual(x[1], terms.wc, tol[1])
-    else:
-        r[1] = ev[EV_TZ] - terms.push
-    if x.shape[0] > 2:
-        r[2] = ev[EV_MS] + pocket_skew_couple(psi, case.par)[0]
-    return F_pocket
+    return F_pocket, _free_residuals_at(x, ev, terms, tol, case.par, r)
 
 
 @internal_kernel
@@ -702,10 +734,7 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
     rt = np.empty(m)
     xt = np.empty(m)
     R = np.empty((m, 1))
-    F_pocket = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)
-    norm = 0.0
-    for a in range(m):
-        norm += (r[a] / tol[a]) ** 2
+    F_pocket, norm = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)
     have = chord          # J holds a Jacobian
     fresh = False         # ... built at the present x
     for _ in range(max_iter):
@@ -728,7 +757,7 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
             if not fresh:
                 have = False
                 continue
-            F_pocket = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)   # ev back at x from the differences
+            F_pocket, norm = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)   # ev back at x from the differences
             return False, F_pocket, have
         step = 1.0
         accepted = False
@@ -737,16 +766,13 @@ def _free_roller(j, x, terms, wi, case, work, max_iter, chord):
         for _ in range(MAX_HALVINGS if fresh else 1):
             for a in range(m):
                 xt[a] = x[a] + step * dx[a, 0]
-            trial_pocket = _free_roller_residuals(j, xt, terms, wi, case, tol, ev, rt)
-            trial = 0.0
-            for a in range(m):
-                trial += (rt[a] / tol[a]) ** 2
+            trial_pocket, trial = _free_roller_residuals(j, xt, terms, wi, case, tol, ev, rt)
             if trial < (norm if fresh else CHORD_CONTRACTION * norm):
                 accepted = True
                 break
             step *= 0.5
         if not accepted and fresh:
-            F_pocket = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)   # ev back at x from the trials
+            F_pocket, norm = _free_roller_residuals(j, x, terms, wi, case, tol, ev, r)   # ev back at x from the trials
             return False, F_pocket, have
         if not accepted:
             have = False        # rebuild at x (ev is rebuilt with it)
@@ -805,21 +831,26 @@ def _solve_free_roller(j, x, start, terms, wi, case, work, max_iter, chord):
 
 
 @internal_kernel
-def _free_roller_jacobian(jac, j, psi, par, c_spin, J):
-    """The free roller j's Jacobian in x = (omega_R, orbit speed[, psi]) from the rigid solve's
+def _free_roller_jacobian(jac, j, x, par, terms, J):
+    """The free roller j's Jacobian at x = (omega_R, orbit speed[, psi]) from the rigid solve's
     (:data:`KinematicJacobian` of its last Jacobian point, per roller: T_j unweighted): the same
-    residuals M_j (with the spin inertia's slope -c_spin [N mm s]), T_j, S_j + pocket couple, the
-    orbit speed in the place of the cage speed, written to J."""
-    J[0, 0] = jac.dMdw[j] - c_spin
+    residuals M_j (with the spin inertia's slope -c_spin [N mm s]), T_j with the pocket walls' slope
+    at its place (``terms``, :func:`_pocket_moment`), S_j + pocket couple, the orbit speed in the
+    place of the cage speed, written to J."""
+    J[0, 0] = jac.dMdw[j] - terms.c_spin
     J[0, 1] = jac.dMdc[j]
     J[1, 0] = jac.dTdw[j]
     J[1, 1] = jac.dTdc[j]
+    place = terms.base + terms.reach * (x[1] - terms.wc)
+    depth = abs(place) - terms.half_play
+    if depth > 0.0:
+        J[1, 1] -= terms.r_pocket * terms.k_pocket * terms.reach * min(1.0, depth / terms.transition)
     if J.shape[0] > 2:
         J[0, 2] = jac.dMdp[j]
         J[1, 2] = jac.dTdp[j]
         J[2, 0] = jac.dSdw[j]
         J[2, 1] = jac.dSdc[j]
-        J[2, 2] = jac.dSdp[j] + pocket_skew_couple(psi, par)[1]
+        J[2, 2] = jac.dSdp[j] + pocket_skew_couple(x[2], par)[1]
 
 
 # Film of the free rollers (free_roller_speeds): taken again at a roller's speed wherever the solve
@@ -827,8 +858,20 @@ def _free_roller_jacobian(jac, j, psi, par, c_spin, J):
 # again. The spin inertia moves the lightly loaded rollers' spins by up to a factor 40 from the rigid
 # solution's (module docstring); the film thickness goes as the entrainment speed^0.67 (Pan &
 # Hamrock 1989), so a spin within 1e-3 of its film's moves the film by < 7e-4 and the torque far less
-# (measured in the tests, tests/friction/test_orbit_inertia.py).
+# (measured in the tests, tests/friction/test_orbit_inertia.py). The same for the cage speed.
 FREE_FILM_SPIN_TOLERANCE = 1e-3
+# A lap of the orbit whose pocket places, summed, move by less than this fraction of the half play
+# counts as periodic (free_roller_speeds, no roller on a wall): the orbit speeds then average to the
+# cage speed within 1e-3 h / (r_pocket 2 pi), ~2e-7 of it (h = 0.075, r_pocket = 50 mm); numerical choice.
+POCKET_LAP_TOLERANCE = 1e-3
+# Cage speed steps of the free rollers' cage balance (free_roller_speeds) before a bracket is found: at
+# most this fraction of the cage speed times 2^k at the k-th step (the free orbit speeds lie within about
+# 1 % of the rigid cage's, README, "Free rollers and their pocket play"); numerical choice.
+CAGE_PROBE_STEP = 1e-3
+# How far beyond the cage speed at which the next roller inside the play meets a wall (free_roller_speeds)
+# the cage speed steps, relative to that step: onto the wall, from where the secant sees the balance's
+# steep branch; numerical choice.
+CONTACT_OVERSHOOT = 1e-3
 
 
 @internal_kernel
@@ -838,51 +881,56 @@ def _orbit_successor(j, direction, Z):
 
 
 @kernel
-def free_roller_speeds(wc, wi, wR, psi, free, case, settings, totals, loads, jac):
+def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
     """Rollers free in their cage pockets (``friction.cage_guidance = free``): from the rigid-cage
-    solution (cage speed wc [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
-    each loaded roller's own orbit speed and spin speed (and skew): zero z-moment of its contacts
-    and drag about the bearing axis (the time-domain model's orbit coordinate, sim.solvers.dynamic;
-    and zero moment about its skew axis with the pocket's couple), and about its axis the friction
-    moment M_j that changes its spin along the orbit (module docstring, "Spin inertia"):
+    solution (cage speed ``free.wc`` [rad/s], roller speeds wR and skews psi (Z,), :func:`solve_friction`),
+    each loaded roller's own orbit speed and spin speed (and skew), its place in its pocket, and the
+    cage speed (module docstring, "Spin inertia" and "Pocket play"). Roller j arrives from slot j-1
+    (omega_c > 0) after the slot's passage dt = 2 pi / (Z |omega_c|); backward-Euler steps over it:
 
-        M_j(omega_j) = c_spin (omega_j - omega_j-1),   c_spin = I_x omega_c Z / (2 pi)   [N mm s]
-                                                           (``free.c_spin``, :data:`FreeRollers`),
+    - about its axis the friction moment M_j changes its spin: M_j(omega_j) = c_spin (omega_j -
+      omega_j-1), c_spin = I_x |omega_c| Z / (2 pi) [N mm s];
+    - its place in its pocket moves from the place g_j-1 it arrives with: g_j = g_j-1 + r_pocket
+      (Omega_j - omega_c) dt; the z-moment of its contacts and drag about the bearing axis balances the
+      pocket walls' at g_j (the spring of the time domain's pocket, :func:`pocket_wall_force`: 0 inside
+      the play, stiffness ``free.k_pocket`` beyond it; sim.solvers.dynamic);
+    - (with skew: zero moment about its skew axis with the pocket's couple;)
+    - the cage: the walls' z-moments on it balance, sum_j T_z,j = 0; with no roller on a wall the
+      orbit speeds average to the cage speed over a lap (the places are periodic; their common offset
+      is then free and centred in the play).
 
-    omega_j-1 the spin of the roller one slot ahead of it on the orbit. A roller below the
-    kinematic tolerance (not ``settings.active``) keeps the spin it arrives with; a roller on the
-    outer raceway alone (``settings.held``) orbits with the cage, which drives it (the loaded
-    rollers push the cage with shares in proportion to their loads; ASSUMED: the pocket play lets
-    the cage rest on the rollers that lead, which the model does not resolve; README, "Rollers
-    outside the load zone"), and its spin follows the same law. The pocket then carries no net
-    traction, only the z-reaction of the moments about the roller centre
-    (:func:`_free_roller_residuals`), with its friction, and the held rollers' drive.
+    A roller below the kinematic tolerance (not ``settings.active``) keeps the spin it arrives with
+    and orbits with the cage, its place that of the roller ahead within the play. ``settings.held``
+    is not used: rollers on the outer raceway alone balance like the others (the cage pushes those
+    that lag, from the wall behind them).
 
     Solved roller by roller along the orbit from the most loaded one (Gauss-Seidel), sweep after
-    sweep, until a sweep finds every roller's residuals within the tolerances at the spin of the
-    roller ahead and the push of that sweep (they are affine in both, so a roller is solved again
-    only where their change takes it out). A loaded roller's moment falls steeply with its spin
-    (dM/domega << -c_spin), so a sweep contracts the spin errors by the product of c_spin / (c_spin -
-    dM/domega) over the rollers: two or three sweeps. Then the film of every roller whose spin
-    moved by more than FREE_FILM_SPIN_TOLERANCE from its film's is taken again there and the sweeps
-    repeated (film passes, at most settings.max_iter, as many sweeps each).
+    sweep, until a sweep finds every roller's residuals within the tolerances at the spin and place
+    of the roller ahead (recomputed from its stored evaluation: they enter the residuals explicitly).
+    A loaded roller's moment falls steeply with its spin (dM/domega << -c_spin), so a sweep
+    contracts the spin errors by the product of c_spin / (c_spin - dM/domega) over the rollers: two
+    or three sweeps. Then (a pass) the cage speed is moved: with a roller on a wall by a step on the
+    cage balance (regula falsi in a bracket), else to the rollers' mean orbit speed; the film of
+    every roller whose spin, and of all where the cage speed, moved by more than
+    FREE_FILM_SPIN_TOLERANCE from its film's is taken again; and the sweeps repeated (at most
+    settings.max_iter passes).
 
     Every roller is its own class (``settings.weight`` all 1: its neighbours differ); under a pure
     axial load, where the rigid cage's balance is every roller's own and no spin changes along the
-    orbit, the caller keeps the rigid solution. Writes wR (every roller, the inactive ones at the
-    spin they carry), psi, ``totals`` (NEV,) (sums of the roller evaluations) and ``loads`` (Z,
-    NFL) (friction loads: the pocket friction force; with skew the lateral tractions). Starts: wR,
-    psi and the orbit speeds ``free.orbit`` (solution out). A roller's solve starts as a chord from
-    its Jacobian ``free.J[j]`` where ``free.known[j]`` (an earlier pass of this case's load
-    coupling, sim.api.friction_model), else from ``jac``, the rigid solve's
-    :data:`KinematicJacobian` per roller (its cage-moment entries unweighted), where it holds one
-    and the roller is not held; ``free.J`` and ``free.known`` are written for the next pass.
-    Tolerances as the rigid solve's last pass (:func:`solve_friction`): FINAL_TOLERANCE_FACTOR (an
-    iterate of the load coupling, not ``settings.final``: ``settings.seed_factor``) x
-    settings.tol_M on the moments, and on the z-moment x tol_T over the number of rollers. Returns
-    converged (every roller, the sweeps and the film passes)."""
+    orbit, the caller keeps the rigid solution. Writes wR, psi, ``totals`` (NEV,) (sums of the
+    roller evaluations, and in the sliding and cage powers the spin-up slip and the pocket walls'
+    work, module docstring), ``loads`` (Z, NFL) (friction loads: the pocket friction force; with
+    skew the lateral tractions) and ``free`` (:data:`FreeRollers`: orbit speeds, places, cage
+    speed, the Jacobians). Starts: wR, psi and ``free``. A roller's solve starts as a chord from its
+    Jacobian ``free.J[j]`` where ``free.known[j]`` (an earlier pass of this case's load coupling,
+    sim.api.friction_model), else from ``jac``, the rigid solve's :data:`KinematicJacobian` per
+    roller (its cage-moment entries unweighted), where it holds one. Tolerances as the rigid
+    solve's last pass (:func:`solve_friction`): FINAL_TOLERANCE_FACTOR (an iterate of the load
+    coupling, not ``settings.final``: ``settings.seed_factor``) x settings.tol_M on the moments, on
+    each roller's z-moment x tol_T over the number of rollers, on the cage's x tol_T. Returns
+    converged (every roller, the sweeps, the cage and the film passes)."""
     Z = wR.shape[0]
-    active, held = settings.active, settings.held
+    active = settings.active
     for j in range(Z):
         if settings.weight[j] != 1.0:
             raise ValueError("free_roller_speeds solves every roller on its own: settings.weight must be all 1")
@@ -894,18 +942,20 @@ def free_roller_speeds(wc, wi, wR, psi, free, case, settings, totals, loads, jac
     tol[1] = loose * settings.tol_T / Z
     if skew:
         tol[2] = tol[0]
+    tol_cage = loose * settings.tol_T
     ev = np.empty(NEV)
     r = np.empty(m)
     x = np.empty(m)
     start = np.empty(2)
     xs = np.empty((Z, m))            # each roller's solution (spin, orbit speed[, skew])
-    res = np.zeros((Z, m))           # its residuals there
     evs = np.zeros((Z, NEV))         # its evaluation there
-    solved = np.zeros(Z, dtype=np.bool_)    # xs, res, evs hold its solution at its present film
-    orbit, known, c_spin = free.orbit, free.known, free.c_spin
-    up_used = np.zeros(Z)            # the upstream spin and the push its residuals hold
-    push_used = np.zeros(Z)
+    F_pocket = np.zeros(Z)           # its pocket friction force there
+    solved = np.zeros(Z, dtype=np.bool_)    # xs, evs hold its solution at its present film
+    orbit, gap, known = free.orbit, free.gap, free.known
+    h, rp = free.half_play, free.r_pocket
+    wc = free.wc[0]
     w_film = wR.copy()               # the spins the rollers' film was taken at
+    wc_film = wc                     # ... and the cage speed
     q = np.zeros(Z)
     for j in range(Z):
         xs[j, 0] = wR[j]
@@ -915,91 +965,166 @@ def free_roller_speeds(wc, wi, wR, psi, free, case, settings, totals, loads, jac
         q[j] = case.bearing.q[j].sum()
     direction = 1 if wc >= 0.0 else -1
     first = -1
-    pushers = 0.0
     for j in range(Z):
         if active[j] and (first < 0 or q[j] > q[first]):
             first = j
-        if active[j] and not held[j]:
-            pushers += q[j]
-    # the held rollers' drive, at their start speeds until they are solved
-    drive = 0.0
-    for j in range(Z):
-        if active[j] and held[j]:
-            roller_friction(j, wR[j], psi[j], wc, wi, case, ev)
-            drive -= ev[EV_TZ]
+    # the cage balance falls with the cage speed: a bracket (lo: the rollers drive the cage, hi: they brake
+    # it), the previous pass's point and the rollers on walls there
+    lo = -np.inf
+    hi = np.inf
+    F_lo = 0.0
+    F_hi = 0.0
+    probes = 0
+    walls_prev = Z
+    wc_prev = 0.0
+    F_prev = 0.0
+    have_prev = False
+    c_spin = 0.0
     converged = False
     failed = False
-    for _ in range(settings.max_iter):          # film passes
+    for _ in range(settings.max_iter):          # passes: film and cage speed
+        c_spin = free.inertia * abs(wc) * Z / (2.0 * np.pi)
+        reach = rp * 2.0 * np.pi / (Z * abs(wc))
         settled = False
         for _ in range(settings.max_iter):      # sweeps along the orbit
             solves = 0
             j = first
             for _ in range(Z):
-                up = xs[(j - direction + Z) % Z, 0]
+                u = (j - direction + Z) % Z
+                base = gap[u]
                 if not active[j]:
-                    xs[j, 0] = up
+                    xs[j, 0] = xs[u, 0]
+                    xs[j, 1] = wc
+                    gap[j] = max(-h, min(h, base))
                     j = _orbit_successor(j, direction, Z)
                     continue
-                push = 0.0 if held[j] else drive * q[j] / pushers
-                if solved[j]:
-                    res[j, 0] += c_spin * (up - up_used[j])
-                    if not held[j]:
-                        res[j, 1] -= push - push_used[j]
-                    up_used[j] = up
-                    push_used[j] = push
-                    norm = 0.0
-                    for a in range(m):
-                        norm += (res[j, a] / tol[a]) ** 2
-                    if norm <= 1.0:
-                        j = _orbit_successor(j, direction, Z)
-                        continue
+                terms = FreeRollerTerms(xs[u, 0], c_spin, wc, base, reach, h, free.k_pocket, free.transition, rp)
+                if solved[j] and _free_residuals_at(xs[j], evs[j], terms, tol, case.par, r) <= 1.0:
+                    gap[j] = base + reach * (xs[j, 1] - wc)
+                    j = _orbit_successor(j, direction, Z)
+                    continue
                 for a in range(m):
                     x[a] = xs[j, a]
                 chord = known[j]
-                if not chord and jac.known[0] and not held[j]:
-                    _free_roller_jacobian(jac, j, xs[j, 2] if skew else 0.0, case.par, c_spin, free.J[j])
+                if not chord and jac.known[0]:
+                    _free_roller_jacobian(jac, j, x, case.par, terms, free.J[j])
                     chord = True
                 start[0] = wR[j]
                 start[1] = psi[j]
-                terms = FreeRollerTerms(push, up, c_spin, held[j], wc)
-                ok, F_pocket, known[j] = _solve_free_roller(j, x, start, terms, wi, case,
-                                                            FreeRollerWork(tol, ev, r, free.J[j]),
-                                                            settings.max_iter, chord)
+                ok, F_pocket[j], known[j] = _solve_free_roller(j, x, start, terms, wi, case,
+                                                               FreeRollerWork(tol, ev, r, free.J[j]),
+                                                               settings.max_iter, chord)
                 if not ok:
                     failed = True
                     break
                 for a in range(m):
                     xs[j, a] = x[a]
-                    res[j, a] = r[a]
                 for i in range(NEV):
                     evs[j, i] = ev[i]
-                friction_loads(ev, F_pocket, loads[j])     # ev: the evaluation at x
-                up_used[j] = up
-                push_used[j] = push
+                gap[j] = base + reach * (x[1] - wc)
                 solved[j] = True
                 solves += 1
                 j = _orbit_successor(j, direction, Z)
             if failed:
                 break
-            drive = 0.0
-            for j in range(Z):
-                if active[j] and held[j]:
-                    drive -= evs[j, EV_TZ]
             if solves == 0:
                 settled = True
                 break
         if failed or not settled:
             break
-        stale = np.zeros(Z, dtype=np.bool_)
+        # the cage
+        F = 0.0
+        walls = 0
+        lap = 0.0
         for j in range(Z):
-            if active[j] and abs(xs[j, 0] - w_film[j]) > FREE_FILM_SPIN_TOLERANCE * abs(w_film[j]):
+            if active[j]:
+                F += evs[j, EV_TZ]
+                lap += reach * (xs[j, 1] - wc)
+                if abs(gap[j]) > h:
+                    walls += 1
+        wc_new = wc
+        if walls == 0:
+            if abs(lap) > POCKET_LAP_TOLERANCE * h:
+                wc_new = wc + lap / (reach * Z)       # the mean orbit speed
+            centre = 0.5 * (gap.max() + gap.min())
+            for j in range(Z):
+                gap[j] -= centre
+        elif abs(F) > tol_cage:
+            # regula falsi with the Illinois modification in a bracket (Dowell & Jarratt 1971); before one, a
+            # secant step (first from an earlier pass's slope, else the rollers on walls: each one's grip on
+            # the rings, the rigid solve's slope of its z-moment with its orbit speed, its spin balanced, in
+            # series with the walls' stiffness r_pocket k_pocket r_pocket dt (1 + n), n the rollers inside the
+            # play since the last one on a wall, whose places move by -r_pocket dt per unit cage speed), at
+            # most CAGE_PROBE_STEP x 2^k of the cage speed at the k-th step
+            if F > 0.0:
+                if lo == wc_prev:
+                    F_hi *= 0.5         # Illinois: the other end stayed twice
+                lo = wc
+                F_lo = F
+            else:
+                if hi == wc_prev:
+                    F_lo *= 0.5
+                hi = wc
+                F_hi = F
+            if hi - lo <= 4.0 * np.finfo(np.float64).eps * abs(wc):
+                break       # no cage speed balances the cage to its tolerance: not converged
+            # The balance is flat while the rollers on walls are light, steep once a loaded roller meets
+            # one: unless a roller met a wall since the last point, no step short of the cage speed where
+            # the next roller inside the play meets the wall the balance needs
+            slope = 0.0
+            contact = np.inf
+            chain = 0
+            j = first
+            for k in range(2 * Z):
+                if active[j] and abs(gap[j]) > h:
+                    grip = jac.dTdc[j] - jac.dTdw[j] * jac.dMdc[j] / (jac.dMdw[j] - c_spin)
+                    if k >= Z and jac.known[0] and grip < 0.0:
+                        slope -= 1.0 / (1.0 / (rp * free.k_pocket * reach * (1 + chain)) - 1.0 / grip)
+                    chain = 0
+                elif active[j]:
+                    chain += 1
+                    if k >= Z:
+                        room = gap[j] + h if F > 0.0 else h - gap[j]
+                        contact = min(contact, room / (reach * chain))
+                j = _orbit_successor(j, direction, Z)
+            if np.isfinite(lo) and np.isfinite(hi):
+                wc_new = (lo * F_hi - hi * F_lo) / (F_hi - F_lo)
+            else:
+                if have_prev:
+                    slope = (F - F_prev) / (wc - wc_prev)
+                elif free.slope[0] < 0.0:
+                    slope = free.slope[0]
+                limit = CAGE_PROBE_STEP * abs(wc) * 2.0 ** probes
+                step = -F / slope if slope < 0.0 else limit * np.sign(F)
+                wc_new = wc + max(-limit, min(limit, step))
+                probes += 1
+            if np.isfinite(contact) and walls <= walls_prev:
+                jump = wc + np.sign(F) * contact * (1.0 + CONTACT_OVERSHOOT)
+                if lo < jump < hi and abs(jump - wc) > abs(wc_new - wc):
+                    wc_new = jump
+            if have_prev and (F - F_prev) / (wc - wc_prev) < 0.0:
+                free.slope[0] = (F - F_prev) / (wc - wc_prev)
+            wc_prev = wc
+            F_prev = F
+            walls_prev = walls
+            have_prev = True
+        moved = wc_new != wc
+        wc = wc_new
+        stale = np.zeros(Z, dtype=np.bool_)
+        film_cage = abs(wc - wc_film) > FREE_FILM_SPIN_TOLERANCE * abs(wc_film)
+        if film_cage:
+            wc_film = wc
+        for j in range(Z):
+            if active[j] and (film_cage or abs(xs[j, 0] - w_film[j]) > FREE_FILM_SPIN_TOLERANCE * abs(w_film[j])):
                 stale[j] = True
                 solved[j] = False
                 w_film[j] = xs[j, 0]
-        if not np.any(stale):
+        if not moved and not np.any(stale):
             converged = True
             break
-        lubrication_state(w_film, wc, wi, stale, case)
+        if np.any(stale):
+            lubrication_state(w_film, wc_film, wi, stale, case)
+    free.wc[0] = wc
     for i in range(NEV):
         totals[i] = 0.0
     for j in range(Z):
@@ -1017,4 +1142,8 @@ def free_roller_speeds(wc, wi, wR, psi, free, case, settings, totals, loads, jac
             psi[j] = xs[j, 2]
         for i in range(NEV):
             totals[i] += evs[j, i]
+        friction_loads(evs[j], F_pocket[j], loads[j])
+        # the pocket walls' work on the roller's motion in its pocket, T_z,j (Omega_j - omega_c) (module
+        # docstring, "Pocket play"), with the cage pocket's power
+        totals[EV_P0 + CAGE] += evs[j, EV_TZ] * (xs[j, 1] - wc)
     return converged
