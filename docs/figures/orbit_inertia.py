@@ -1,27 +1,36 @@
-"""Roller spin inertia along the orbit: the quasi-static solver against an independent solution of
-its equations and against the time domain (session 23's experiment, in the solver since session 24).
+"""Free rollers along the orbit, their spin inertia and their pocket play: the quasi-static solver
+against an independent solution of its equations and against the time domain (session 23's
+experiment, in the solver since session 24; the pocket play since session 25).
 
-The quasi-static free rollers (sim.solvers.kinematics, "Spin inertia") carry each roller's spin
-along the orbit: over the Z roller azimuths of the steady state (roller j at 2 pi j / Z, arriving
-from j - 1) the backward-Euler form of I_x d omega / dt = M(psi, omega) with dpsi / dt = omega_c,
+The quasi-static free rollers (sim.solvers.kinematics, "Spin inertia" and "Pocket play") carry each
+roller's spin and its place in its cage pocket along the orbit: over the Z roller azimuths of the
+steady state (roller j at 2 pi j / Z, arriving from j - 1 after dt = 2 pi / (Z omega_c)) backward
+Euler on I_x d omega / dt = M and on the place g along the pocket,
 
     M_j(omega_j) = c (omega_j - omega_j-1),   c = I_x omega_c Z / (2 pi)            [N mm]
+    g_j = g_j-1 + r_p (Omega_j - omega_c) dt,  T_z,j + r_p P(g_j) = 0              [mm, N mm]
 
-(I_x the roller's moment of inertia about its axis). Summed with weights omega_j over the closed
-orbit, sum_j M_j omega_j = c/2 sum_j (omega_j - omega_j-1)^2: the spin energy the tractions put in
-per unit time, which the contacts dissipate as slip where a roller is spun up again (1/2 I_x dw^2
-per pass). The torque is the contacts' power at the solved speeds plus that term, over the
-inner-ring speed; the outer ring's reaction torque is printed beside it as a check of the balance.
+(I_x the roller's moment of inertia about its axis, Omega_j its orbit speed, T_z,j the z-moment of
+its contacts about the bearing axis, P the pocket walls' spring, r_p the pitch radius), and the
+cage's balance sum_j T_z,j = 0, the places periodic over the lap. Summed over the closed orbit,
+sum_j M_j omega_j = c/2 sum_j (omega_j - omega_j-1)^2 is the spin energy the tractions put in per
+unit time (dissipated as slip where a roller is spun up again), and sum_j T_z,j (Omega_j - omega_c)
+the walls' work on the rollers' motion along their pockets. The torque is the contacts' power at
+the solved speeds plus both terms, over the inner-ring speed; the outer ring's reaction torque is
+printed beside it as a check of the balance.
 
 This script solves the same equations on its own, on the solver's load distribution without the
-friction loads fed back (sim.api.friction_model.FrictionModel.evaluate) and with its cage speed:
-the Z spins and each loaded roller's own orbit speed at once (scipy.optimize.root), from the
-rigid cage's speeds (friction.cage_guidance = rigid: each roller balanced at its azimuth, no
-inertia), with the film of every loaded roller (sim.physics.friction.lubrication_state)
-recomputed at the spins of the previous pass until they no longer change. The solver sweeps the
-rollers one by one along the orbit instead (sim.solvers.kinematics.free_roller_speeds). Each case
-is run by the time-domain solver too (steady state from rolling kinematics). Writes
-orbit_inertia.md beside this file.
+friction loads fed back (sim.api.friction_model.FrictionModel.evaluate): the Z spins, the Z orbit
+speeds, the cage speed and the first roller's place at once (scipy.optimize.root, Levenberg-
+Marquardt: without a wall contact the places' common offset is free), from the rigid cage's spins
+(friction.cage_guidance = rigid: each roller balanced at its azimuth, no inertia, no play) and the
+solver's orbit speeds, cage speed and first place (from the rigid cage's too, the walls' kinks left
+it far from a solution in the fast TRB case), with
+the film of every loaded roller (sim.physics.friction.lubrication_state) recomputed at the spins
+and cage speed of the previous pass until they no longer change. The solver sweeps the rollers
+one by one along the orbit instead and moves the cage speed between sweeps
+(sim.solvers.kinematics.free_roller_speeds). Each case is run by the time-domain solver too
+(steady state from rolling kinematics). Writes orbit_inertia.md beside this file.
 
     python docs/figures/orbit_inertia.py            # about 20 min on one core, most of it the dynamic runs
 """
@@ -39,7 +48,8 @@ import sim  # noqa: E402
 from sim.api import dynamic_model  # noqa: E402
 from sim.api.cases import operating_points  # noqa: E402
 from sim.api.simulation import build_models, resolved  # noqa: E402
-from sim.physics.friction import EV_MU, EV_P0, EV_TOUT, EV_TZ, NC, NEV, lubrication_state, roller_friction  # noqa: E402
+from sim.physics.friction import (EV_MU, EV_P0, EV_TOUT, EV_TZ, NC, NEV, lubrication_state,  # noqa: E402
+                                  pocket_wall_force, roller_friction)
 
 OUT = pathlib.Path(__file__).with_suffix(".md")
 FILM_PASSES = 20          # film passes at most
@@ -57,13 +67,17 @@ CASES = {   # the cases of session 23's comparisons (README, dynamic solver)
     "pinion_alpha TSRB 11.4 / 14.4 kN, 1660 rpm, 86 degC": ["bearing=tsrb_pinion_alpha", "lubricant=pinion_oil",
                                                            "load.Fa=11410", "load.Fr=14380", "load.speed=1660",
                                                            "load.oil_temperature=86"],
+    "pinion_alpha TSRB 7.16 / 6.41 kN, 3910 rpm, 52 degC": ["bearing=tsrb_pinion_alpha", "lubricant=pinion_oil",
+                                                           "load.Fa=7160", "load.Fr=6410", "load.speed=3910",
+                                                           "load.oil_temperature=52"],
 }
 
 
 def orbit_experiment(overrides):
     """(the solver's torque without the friction loads fed back, this script's torque, its
-    outer-ring torque, the rigid cage's spins, this script's spins) [N mm, N mm, N mm, rad/s,
-    rad/s] of one case (module docstring)."""
+    outer-ring torque, the rigid cage's spins, this script's spins, the rollers on pocket walls in
+    this script's solution and in the solver's) [N mm, N mm, N mm, rad/s, rad/s, 1, 1] of one case
+    (module docstring)."""
     cfg = sim.load_config(overrides)
     plain = resolved(cfg)
     model, friction = build_models(cfg, plain)
@@ -72,20 +86,16 @@ def orbit_experiment(overrides):
     res = friction.evaluate(op, raw)
     rigid_cfg = sim.load_config(overrides + ["friction.cage_guidance=rigid"])
     _, rigid = build_models(rigid_cfg, resolved(rigid_cfg))
-    _, wR, _, _, _ = rigid.evaluate(op, raw)["kinematics"]
-    wc = res["kinematics"][0]
+    wc0, wR, _, _, _ = rigid.evaluate(op, raw)["kinematics"]
     wi = np.pi * op.speed_rpm / 30.0
     case = friction.problem(op, raw).case
     Z = wR.shape[0]
     loaded = raw["Q"].sum(axis=1) + raw["Q_rib"] > 0.0
-    lubrication_state(wR.copy(), wc, wi, loaded, case)
+    lubrication_state(wR.copy(), wc0, wi, loaded, case)
     dyn = resolved(sim.load_config(overrides + ["solver=dynamic"]))["solver"]["dynamic"]
-    Ix = dynamic_model.prepare(model, friction, op, dyn).problem.body.Ix
+    body = dynamic_model.prepare(model, friction, op, dyn).problem.body
+    Ix, rp, h, k, d_s = body.Ix, body.r_pocket, body.half_play, body.k_pocket, body.pocket_transition
     ev = np.zeros(NEV)
-    held = loaded & (raw["Q"][:, 1] == 0.0)       # on the outer raceway alone: the cage drives their orbit
-    pushers = loaded & ~held
-    share = np.where(pushers, case.bearing.q.sum(axis=(1, 2)), 0.0)
-    share /= share.sum()
 
     def evaluate(w, orbit):
         M, P, T, C = np.zeros(Z), np.zeros(Z), np.zeros(Z), np.zeros(Z)
@@ -94,40 +104,57 @@ def orbit_experiment(overrides):
             M[j], P[j], T[j], C[j] = ev[EV_MU], ev[EV_P0:EV_P0 + NC].sum(), ev[EV_TOUT], ev[EV_TZ]
         return M, P, T, C
 
+    def places(orbit, wc, g0):
+        """The rollers' places along their pockets from roller 0's, g0, and the place roller 0 arrives
+        with after the lap [mm]; a roller that carries nothing orbits with the cage within the play."""
+        dt = 2.0 * np.pi / (Z * wc)
+        g = np.empty(Z)
+        prev = g0
+        for j in list(range(1, Z)) + [0]:
+            g[j] = prev + rp * (orbit[j] - wc) * dt if loaded[j] else min(h, max(-h, prev))
+            prev = g[j]
+        return g, g0
+
     def residual(x):
-        w, orbit = x[:Z], x[Z:]
+        w, orbit, wc, g0 = x[:Z], x[Z:2 * Z], x[2 * Z], x[2 * Z + 1]
         M, _, _, C = evaluate(w, orbit)
-        r = np.empty(2 * Z)
-        r[:Z] = np.where(loaded, M - Ix * wc * Z / (2.0 * np.pi) * (w - np.roll(w, 1)), w - wR)
-        # free rollers (the quasi-static default, sim.solvers.kinematics.free_roller_speeds): each loaded
-        # roller at the orbit speed where its contacts' z-moment about the bearing axis balances its share
-        # of driving the rollers on the outer raceway alone, which orbit with the cage
-        r[Z:] = np.where(pushers, C + share * C[held].sum(), orbit - wc)
+        g, _ = places(orbit, wc, g0)
+        wall = np.array([rp * pocket_wall_force(gj, h, k, d_s)[0] for gj in g])
+        r = np.empty(2 * Z + 2)
+        r[:Z] = np.where(loaded, M - Ix * wc * Z / (2.0 * np.pi) * (w - np.roll(w, 1)), w - np.roll(w, 1))
+        r[Z:2 * Z] = np.where(loaded, C + wall, orbit - wc)
+        r[2 * Z] = C[loaded].sum()                       # the cage
+        r[2 * Z + 1] = (g[0] - g0) / h                   # the lap closes
         return r
 
     # film passes: the film (thermal viscosity, entrainment) at the speeds of the previous pass, as
     # the quasi-static kinematics iterate it (sim.solvers.kinematics)
-    x = np.concatenate([wR, np.full(Z, wc)])
+    free = res["kinematics"][4]
+    x = np.concatenate([wR, free.orbit, [free.wc[0], free.gap[0]]])
     for _ in range(FILM_PASSES):
-        sol = root(residual, x, method="hybr")
-        if not sol.success:
-            raise RuntimeError(f"{overrides}: {sol.message}")
-        change = np.abs(sol.x - x).max() / np.abs(sol.x).max()
+        sol = root(residual, x, method="lm", options={"xtol": 1e-14, "ftol": 1e-14})
+        if not sol.success or np.abs(residual(sol.x)[:2 * Z + 1]).max() > 1e-6:
+            raise RuntimeError(f"{overrides}: {sol.message}, residual {np.abs(residual(sol.x)).max():.1e}")
+        change = np.abs(sol.x[:2 * Z + 1] - x[:2 * Z + 1]).max() / np.abs(sol.x[:2 * Z + 1]).max()
         x = sol.x
-        lubrication_state(x[:Z].copy(), wc, wi, loaded, case)
+        lubrication_state(x[:Z].copy(), x[2 * Z], wi, loaded, case)
         if change < FILM_TOLERANCE:
             break
-    w, orbit = x[:Z], x[Z:]
-    _, P, T, _ = evaluate(w, orbit)
+    w, orbit, wc, g0 = x[:Z], x[Z:2 * Z], x[2 * Z], x[2 * Z + 1]
+    _, P, T, C = evaluate(w, orbit)
     c = Ix * wc * Z / (2.0 * np.pi)
     spin_up = 0.5 * c * float(((w - np.roll(w, 1)) ** 2).sum())
-    return float(res["torque"]), (P.sum() + spin_up) / wi, float(T.sum()), wR.copy(), w
+    walls = float(C[loaded] @ (orbit - wc)[loaded])
+    on_walls = int((np.abs(places(orbit, wc, g0)[0]) > h).sum())
+    solver_walls = int((np.abs(res["kinematics"][4].gap) > h).sum())
+    return float(res["torque"]), (P.sum() + spin_up + walls) / wi, float(T.sum()), wR.copy(), w, on_walls, \
+        solver_walls
 
 
 def main():
     rows = []
     for name, overrides in CASES.items():
-        solver, exp, t_out, w_rigid, w_exp = orbit_experiment(overrides)
+        solver, exp, t_out, w_rigid, w_exp, walls, solver_walls = orbit_experiment(overrides)
         default = float(sim.simulate(sim.load_config(overrides)).isel(design=0, case=0).torque)
         d = sim.simulate(sim.load_config(overrides + ["solver=dynamic"])).isel(design=0, case=0)
         dyn = float(d.torque)
@@ -136,23 +163,25 @@ def main():
         samples = int(dyn_cfg["samples_per_window"])
         last = spin[-samples:]          # the last window
         rows.append((name, default, solver, exp, t_out, dyn, bool(d.converged), w_rigid.min() / w_rigid.max(),
-                     w_exp.min() / w_exp.max(), last.min() / last.max()))
+                     w_exp.min() / w_exp.max(), last.min() / last.max(), walls, solver_walls))
         print(rows[-1], flush=True)
-    lines = ["# Roller spin inertia along the orbit: the solver, an independent solution and the time domain", "",
+    lines = ["# Free rollers along the orbit (spin inertia, pocket play): the solver, an independent solution and the "
+             "time domain", "",
              "Generated by `python docs/figures/orbit_inertia.py` (method in its docstring). Torques in N mm.",
              "Solver: the quasi-static default (`sim.simulate`, friction loads fed back), and its friction",
              "evaluation without that feedback, on which the independent solution runs. Time domain: steady state",
              "from rolling kinematics. Spin ratio: slowest over fastest roller (time domain: over the last window's",
              "samples); the rigid cage balances each roller at its azimuth, as the free rollers did before session 24.",
+             "Rollers on walls: beyond the pocket play at the end of their slot (independent / solver).",
              "",
              "| case | solver | solver without feedback | independent | its outer-ring torque | time domain "
              "| solver vs time domain | independent vs solver without feedback | spin ratio rigid cage / independent "
-             "/ time domain |",
-             "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
-    for name, default, solver, exp, t_out, dyn, steady, r_rigid, r_exp, r_dyn in rows:
+             "/ time domain | rollers on walls |",
+             "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
+    for name, default, solver, exp, t_out, dyn, steady, r_rigid, r_exp, r_dyn, walls, solver_walls in rows:
         lines.append(f"| {name} | {default:.1f} | {solver:.1f} | {exp:.1f} | {t_out:.1f} | "
                      f"{dyn:.1f}{'' if steady else ' (not steady)'} | {default / dyn - 1:+.2%} | "
-                     f"{exp / solver - 1:+.1e} | {r_rigid:.3f} / {r_exp:.3f} / {r_dyn:.3f} |")
+                     f"{exp / solver - 1:+.1e} | {r_rigid:.3f} / {r_exp:.3f} / {r_dyn:.3f} | {walls} / {solver_walls} |")
     OUT.write_text("\n".join(lines) + "\n")
     print(OUT.read_text())
 

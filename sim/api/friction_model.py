@@ -244,13 +244,12 @@ class FrictionModel:
         # the friction loads the quasi-static balance takes back (BearingModel.solve(op,
         # roller_loads, ring_loads))
         loads = np.zeros((g.Z, NFL))
-        # free rollers (friction.cage_guidance): each loaded roller at its own orbit speed, the pocket
-        # carrying only the z-reaction of the moments about its centre, its spin changing along the orbit
-        # with its inertia (sim.solvers.kinematics, "Spin inertia"); the cage speed is that of the rigid
-        # balance (the dynamic solver's cage speed agrees with it within 7e-4 under radial loads; the
-        # loaded rollers' mean orbit speed deviates by up to 1 %). A later pass of the load coupling
-        # starts from the free solution of the earlier one (``start``'s fifth entry) and keeps its cage
-        # speed: the friction loads it feeds back are 1e-5 of the roller loads.
+        # free rollers (friction.cage_guidance): each loaded roller at its own orbit speed, moving along its
+        # pocket and held by the pocket walls beyond the play, its spin changing along the orbit with its
+        # inertia (sim.solvers.kinematics, "Spin inertia" and "Pocket play"); the cage speed balances the
+        # walls' z-moments. The free solve starts from the rigid cage's solution; a later pass of the load
+        # coupling starts from the free solution of the earlier one (``start``'s fifth entry; the rigid solve
+        # is skipped: the friction loads it feeds back are 1e-5 of the roller loads).
         warm = (start is not None and len(start) > 4 and start[4] is not None and self.free_rollers
                 and self.traction_kinematics and not static)
         if warm:
@@ -273,14 +272,14 @@ class FrictionModel:
             pocket = (self.roller_spin_inertia, 0.5 * self.pocket_clearance, 2.0 * self.pocket_stiffness,
                       self.pocket_transition, 0.5 * g.Dpw)
             if warm:
-                free_start = FreeRollers(start[4].orbit.copy(), start[4].gap.copy(), np.array([wc]),
-                                         start[4].slope.copy(), start[4].J.copy(), start[4].known.copy(), *pocket)
+                free_start = FreeRollers(start[4].orbit.copy(), start[4].gap.copy(), np.array([wc]), start[4].J.copy(),
+                                         start[4].known.copy(), *pocket)
                 lubrication_state(wR, wc, wi, full, case)
             else:
                 wR[:] = wR[source]
                 psi[:] = psi[source]
                 m = 3 if par.skew else 2
-                free_start = FreeRollers(np.full(Z, wc), np.zeros(Z), np.array([wc]), np.zeros(1), np.zeros((Z, m, m)),
+                free_start = FreeRollers(np.full(Z, wc), np.zeros(Z), np.array([wc]), np.zeros((Z, m, m)),
                                          np.zeros(Z, dtype=np.bool_), *pocket)
                 lubrication_state(wR, wc, wi, represented, case)
             # the rigid solve's Jacobian per roller: its cage-moment rows are weighted by the classes

@@ -693,7 +693,7 @@ def rate_slip(rates, inner, dr, dz, ar, az, ur, uz):
     return s_t, s_a
 
 
-@internal_kernel
+@kernel
 def pocket_wall_force(g, half_play, k_pocket, transition):
     """Spring force of a cage pocket's walls on a roller at g [mm] from the pocket's centre along
     the orbit (at the pocket radius): 0 inside the play, |g| <= half_play [mm]; beyond it, at the

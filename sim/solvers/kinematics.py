@@ -24,8 +24,29 @@ and the power loss the contacts' plus that spin-up slip (sim.api.friction_model,
 Measured against the time domain (docs/figures/orbit_inertia.md): TRB 32208 3 / 8 kN, 6000 rpm
 -2.64 % -> +0.02 %; TRB 31313 21.2 / 22.0 kN, 3390 rpm -2.24 % -> -0.14 %.
 
+Pocket play (free rollers, :func:`free_roller_speeds`). A free roller's orbit speed Omega_j, set by
+its own tractions, differs from the cage's by up to about 1 % under a radial load (light rollers
+outside the load zone by 10 %): over one orbit that would carry it 1-2 mm along its pocket against a
+play of 0.15 mm, so it meets a pocket wall, which then takes its tractions' z-moment as a rigid cage
+would (with the pocket friction of that force: fast radially loaded pinion_alpha TSRBs, 135 against
+2 N mm). Its place g_j in the pocket (from the pocket's centre along the orbit at the pocket radius
+r_pocket, + ahead) is carried along the orbit like its spin, backward Euler over the slot's passage
+dt = 2 pi / (Z |omega_c|): g_j = g_j-1 + r_pocket (Omega_j - omega_c) dt, and the z-moment of its
+contacts balances the walls' spring at g_j (the time domain's pocket, friction.skew.pocket_clearance,
+pocket_stiffness x 2 ends, pocket_transition; sim.physics.friction.pocket_wall_force; the time
+domain's damper is left out: it acts on the rate of the place, which a steady pass does not
+resolve). The cage speed balances the walls' z-moments on the cage, sum_j T_z,j = 0; where no roller
+meets a wall the places must repeat after a lap, so the cage runs at the rollers' mean orbit speed.
+A tight, stiff pocket (1 um, 1e7 N/mm) gives the rigid cage's torque within 0.2 %, a wide one (5 mm)
+rollers free of the walls. The walls' spring does work on a roller that moves into it, T_z,j (Omega_j -
+omega_c) summed over the lap (>= 0: backward Euler's dissipation on a convex spring energy), with the
+cage pocket's loss, so that the outer ring's torque is the power loss over the speed. Measured against
+the time domain (tests/dynamic/test_ladder.py): pinion_alpha 7.16 / 6.41 kN, 3910 rpm +8.0 % -> +0.26 %;
+11.32 / 8.77 kN, 4940 rpm +5.3 % -> -0.12 %; cage speed within 3e-4.
+
 A TRB's rollers outside the load zone rest on the cup and the rib (sim.solvers.quasi_static).
-With free rollers their spin follows the same law (the rib and the cup brake them). With a rigid
+With free rollers their spin follows the same law (the rib and the cup brake them) and their orbit
+their own tractions within the pocket play, like every roller's. With a rigid
 cage (:func:`solve_friction` alone) their spin is not balanced but held (``KinematicsSettings.held``)
 at rolling on the outer raceway (:func:`sim.physics.friction.outer_rolling_speed`): balanced on the
 outer ring alone it would skid (TRB 31313 at 32.1 / 48.0 kN, 3821 rpm: its own balance lies at
@@ -98,9 +119,9 @@ KinematicsSettings = namedtuple("KinematicsSettings", [
                     # coupled_solution), whose speeds only set the next pass's film and start: one film pass,
                     # solved to seed_factor x the tolerances
     "held",         # (Z,) bool: rollers resting on the outer raceway alone (outside the load zone,
-                    # sim.solvers.quasi_static): the cage drives them; in the rigid solve their spin is
+                    # sim.solvers.quasi_static): in the rigid solve the cage drives them and their spin is
                     # held at rolling on the outer raceway (sim.physics.friction.outer_rolling_speed)
-                    # instead of balanced, free rollers' spin follows its inertia (module docstring)
+                    # instead of balanced; not used by the free solve (module docstring)
 ])
 
 # First bracket of a roller speed: +-10 % of the start value (rolling kinematics (2.22) or the
@@ -664,8 +685,6 @@ FreeRollers = namedtuple("FreeRollers", [
     "gap",          # (Z,) each roller's place in its pocket at the end of its slot, from the pocket's centre at
                     # the pocket radius, + ahead [mm]: start in, solution out
     "wc",           # (1,) the cage speed [rad/s]: start in (the rigid cage's), solution out
-    "slope",        # (1,) the last secant slope of the cage balance in the cage speed [N mm s] (< 0; 0: none):
-                    # start in (an earlier pass's), out
     "J",            # (Z, m, m) each roller's last Jacobian (m = 2, 3 with skew)
     "known",        # (Z,) bool: J[j] holds one
     "inertia",      # N mm s^2: I_x, the roller's moment of inertia about its axis
@@ -815,8 +834,11 @@ def _solve_free_roller(j, x, start, terms, wi, case, work, max_iter, chord):
     start[0] [rad/s] with the skew just beyond each pocket wall, the side of the start skew start[1]
     [rad] first: the pocket's skew couple has a kink at |psi| = clearance, and where the friction
     skew moment grows with the skew (no stable skew inside the play) the Newton step from the rigid
-    solution's skew heads across a wall it cannot pass (FREE_SKEW_WALL_START). Returns as
-    :func:`_free_roller`."""
+    solution's skew heads across a wall it cannot pass (FREE_SKEW_WALL_START). Where it still fails,
+    again from the start spin with its place on the pocket wall its z-moment residual drives it to,
+    one onset depth ``terms.transition`` deep: where the contacts' traction saturates (mixed
+    friction; a TRB roller on the cup and the rib, dragged by the rib) the z-moment is flat in the
+    orbit speed over the play, and only the walls' spring balances it. Returns as :func:`_free_roller`."""
     ok, F_pocket, have = _free_roller(j, x, terms, wi, case, work, max_iter, chord)
     side = -1.0 if start[1] < 0.0 else 1.0
     for _ in range(2 if x.shape[0] > 2 and not ok else 0):
@@ -827,6 +849,13 @@ def _solve_free_roller(j, x, start, terms, wi, case, work, max_iter, chord):
         if ok:
             break
         side = -side
+    if not ok:
+        wall = terms.half_play + terms.transition
+        x[0] = start[0]
+        x[1] = terms.wc + ((wall if work.r[1] > 0.0 else -wall) - terms.base) / terms.reach
+        if x.shape[0] > 2:
+            x[2] = start[1]
+        ok, F_pocket, have = _free_roller(j, x, terms, wi, case, work, max_iter, False)
     return ok, F_pocket, have
 
 
@@ -868,9 +897,13 @@ POCKET_LAP_TOLERANCE = 1e-3
 # most this fraction of the cage speed times 2^k at the k-th step (the free orbit speeds lie within about
 # 1 % of the rigid cage's, README, "Free rollers and their pocket play"); numerical choice.
 CAGE_PROBE_STEP = 1e-3
-# How far beyond the cage speed at which the next roller inside the play meets a wall (free_roller_speeds)
-# the cage speed steps, relative to that step: onto the wall, from where the secant sees the balance's
-# steep branch; numerical choice.
+# A bracket of the free rollers' cage speed (free_roller_speeds) narrower than this fraction of it ends the
+# cage balance, the states at its ends averaged to balance the cage: far below what moves a loss (the time
+# domain's steady state resolves the cage speed to 1e-4, solver.dynamic.steady_tolerance_speed); numerical choice.
+CAGE_SPEED_RESOLUTION = 1e-9
+# How far beyond the cage speed at which the next roller inside the play meets a wall a Newton step of the
+# cage balance may go (free_roller_speeds), relative to that step: onto the wall, where the balance's slope
+# changes; numerical choice.
 CONTACT_OVERSHOOT = 1e-3
 
 
@@ -878,6 +911,129 @@ CONTACT_OVERSHOOT = 1e-3
 def _orbit_successor(j, direction, Z):
     """The azimuth slot after slot j along the orbit (direction +-1, the sign of the cage speed)."""
     return (j + direction + Z) % Z
+
+
+@internal_kernel
+def _place_shares(free, active, reach, jac, c_spin, share, grip):
+    """Each roller's linearised response to a change e = d base - reach d omega_c of its place's start
+    (its base) and the cage speed, at the free rollers' present solution (:data:`FreeRollers` ``free``:
+    places, Jacobians), written to ``share`` (Z,) (its place moves by share e) and ``grip`` (Z,) (its
+    contacts' z-moment by grip e [N mm / mm]). A roller beyond the play (depth in the walls' spring,
+    local stiffness k_loc) holds its z-balance T_c(Omega) + r_p P(g) = 0, g = base + reach (Omega -
+    omega_c): with its grip a = -dT_c/dOmega (its spin, and skew, balanced: the Schur complement of its
+    Jacobian ``free.J[j]`` where known, else the rigid solve's ``jac``) and the walls' K = r_p k_loc
+    reach, share a / (a + K) and grip a K / ((a + K) reach); a roller inside the play share 1, grip 0
+    (one that carries nothing: inside the play share 1, on a wall 0)."""
+    Z = free.gap.shape[0]
+    h, k, d_s, rp = free.half_play, free.k_pocket, free.transition, free.r_pocket
+    for j in range(Z):
+        share[j] = 1.0
+        grip[j] = 0.0
+        depth = abs(free.gap[j]) - h
+        if depth <= 0.0:
+            continue
+        if not active[j]:
+            share[j] = 0.0
+            continue
+        K = rp * k * min(1.0, depth / d_s) * reach
+        J = free.J[j]
+        if free.known[j]:
+            m = J.shape[0]
+            # the contacts' slope along the orbit speed with the other unknowns balanced (Schur complement)
+            t = J[1, 1] + K
+            if m == 2:
+                t -= J[1, 0] * J[0, 1] / J[0, 0]
+            else:
+                A = np.empty((2, 2))
+                A[0, 0] = J[0, 0]
+                A[0, 1] = J[0, 2]
+                A[1, 0] = J[2, 0]
+                A[1, 1] = J[2, 2]
+                bvec = np.empty((2, 1))
+                bvec[0, 0] = J[0, 1]
+                bvec[1, 0] = J[2, 1]
+                y = solve_dense(A, bvec)
+                t -= J[1, 0] * y[0, 0] + J[1, 2] * y[1, 0]
+            a = -t
+        elif jac.known[0]:
+            a = -(jac.dTdc[j] - jac.dTdw[j] * jac.dMdc[j] / (jac.dMdw[j] - c_spin))
+        else:
+            a = 0.0
+        if a <= 0.0:
+            share[j] = 0.0
+            continue
+        share[j] = a / (a + K)
+        grip[j] = a * K / ((a + K) * reach)
+
+
+@internal_kernel
+def _cage_slope(free, active, reach, first, direction, jac, c_spin):
+    """Slope of the free rollers' cage balance F = sum_j T_z,j with the cage speed [N mm s] at their
+    present solution, linearised roller by roller along the orbit (:func:`_place_shares`): around the
+    lap the place changes per unit cage speed are periodic, u_j = s_j (u_j-1 - reach), solved from one
+    pass, u = B / (1 - A), A the product of the shares s_j; the z-moments change by grip_j (u_j-1 -
+    reach)."""
+    Z = free.gap.shape[0]
+    share = np.empty(Z)
+    grip = np.empty(Z)
+    _place_shares(free, active, reach, jac, c_spin, share, grip)
+    # one pass around the lap from u = 0, then the periodic solution
+    u = 0.0
+    prod = 1.0
+    j = first
+    for _ in range(Z):
+        u = share[j] * (u - reach)
+        prod *= share[j]
+        j = (j + direction + Z) % Z
+    if prod >= 1.0:
+        return 0.0      # no roller on a wall: the places' offset is free
+    u = u / (1.0 - prod)
+    slope = 0.0
+    for _ in range(Z):
+        slope += grip[j] * (u - reach)
+        u = share[j] * (u - reach)
+        j = (j + direction + Z) % Z
+    return slope
+
+
+# The free rollers' state at one cage speed of their cage balance (free_roller_speeds):
+BalanceState = namedtuple("BalanceState", [
+    "F",            # (1,) the cage balance, the sum of the rollers' z-moments [N mm]
+    "x",            # (Z, m) each roller's spin, orbit speed[, skew] [rad/s, rad]
+    "ev",           # (Z, NEV) its evaluation there
+    "F_pocket",     # (Z,) its pocket friction force [N]
+    "gap",          # (Z,) its place in its pocket [mm]
+])
+
+
+@internal_kernel
+def _keep_state(state, F, xs, evs, F_pocket, gap):
+    """Copies the free rollers' state with the cage balance F [N mm] into ``state`` (:data:`BalanceState`)."""
+    state.F[0] = F
+    state.x[:] = xs
+    state.ev[:] = evs
+    state.F_pocket[:] = F_pocket
+    state.gap[:] = gap
+
+
+@internal_kernel
+def _restore_state(state, xs, evs, F_pocket, gap):
+    """Copies ``state`` (:data:`BalanceState`) back into the free rollers' arrays."""
+    xs[:] = state.x
+    evs[:] = state.ev
+    F_pocket[:] = state.F_pocket
+    gap[:] = state.gap
+
+
+@internal_kernel
+def _mean_state(a, b, xs, evs, F_pocket, gap):
+    """The mean of the states a and b (:data:`BalanceState`, cage balances of opposite signs) in the
+    shares that balance the cage, s a.F + (1 - s) b.F = 0, written to the rollers' arrays."""
+    s = b.F[0] / (b.F[0] - a.F[0])
+    xs[:] = s * a.x + (1.0 - s) * b.x
+    evs[:] = s * a.ev + (1.0 - s) * b.ev
+    F_pocket[:] = s * a.F_pocket + (1.0 - s) * b.F_pocket
+    gap[:] = s * a.gap + (1.0 - s) * b.gap
 
 
 @kernel
@@ -909,11 +1065,15 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
     of the roller ahead (recomputed from its stored evaluation: they enter the residuals explicitly).
     A loaded roller's moment falls steeply with its spin (dM/domega << -c_spin), so a sweep
     contracts the spin errors by the product of c_spin / (c_spin - dM/domega) over the rollers: two
-    or three sweeps. Then (a pass) the cage speed is moved: with a roller on a wall by a step on the
-    cage balance (regula falsi in a bracket), else to the rollers' mean orbit speed; the film of
-    every roller whose spin, and of all where the cage speed, moved by more than
-    FREE_FILM_SPIN_TOLERANCE from its film's is taken again; and the sweeps repeated (at most
-    settings.max_iter passes).
+    or three sweeps. With no roller on a wall the cage speed is set to the rollers' mean orbit speed
+    after each sweep. With rollers on walls, once the sweeps settle, the cage speed takes a Newton
+    step on the cage balance, its slope from the rollers' linearisations (:func:`_cage_slope`), at
+    most to where the next roller meets a wall (CONTACT_OVERSHOOT), within a bracket (regula falsi
+    outside it; where it narrows below CAGE_SPEED_RESOLUTION, the mean of the states at its ends that
+    balances the cage; a roller whose solve fails sends the cage speed half way back to the last
+    state solved); at most settings.max_iter steps. Then the film of every roller whose spin, and of
+    all where the cage speed, moved by more than FREE_FILM_SPIN_TOLERANCE from its film's is taken
+    again and the cage balanced again (at most settings.max_iter film passes).
 
     Every roller is its own class (``settings.weight`` all 1: its neighbours differ); under a pure
     axial load, where the rigid cage's balance is every roller's own and no spin changes along the
@@ -968,148 +1128,190 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
     for j in range(Z):
         if active[j] and (first < 0 or q[j] > q[first]):
             first = j
-    # the cage balance falls with the cage speed: a bracket (lo: the rollers drive the cage, hi: they brake
-    # it), the previous pass's point and the rollers on walls there
-    lo = -np.inf
-    hi = np.inf
-    F_lo = 0.0
-    F_hi = 0.0
-    probes = 0
-    walls_prev = Z
-    wc_prev = 0.0
-    F_prev = 0.0
-    have_prev = False
+    # the cage balance falls with the cage speed: per film, a bracket (lo: the rollers drive the cage, hi: they
+    # brake it), the previous step's point and the rollers on walls there, the states at the bracket's ends
+    at_lo = BalanceState(np.zeros(1), xs.copy(), evs.copy(), F_pocket.copy(), gap.copy())
+    at_hi = BalanceState(np.zeros(1), xs.copy(), evs.copy(), F_pocket.copy(), gap.copy())
     c_spin = 0.0
     converged = False
     failed = False
-    for _ in range(settings.max_iter):          # passes: film and cage speed
-        c_spin = free.inertia * abs(wc) * Z / (2.0 * np.pi)
-        reach = rp * 2.0 * np.pi / (Z * abs(wc))
-        settled = False
-        for _ in range(settings.max_iter):      # sweeps along the orbit
-            solves = 0
+    for _ in range(settings.max_iter):          # film passes
+        lo = -np.inf
+        hi = np.inf
+        F_lo = 0.0
+        F_hi = 0.0
+        probes = 0
+        retreats = 0
+        have_state = False          # at_lo or at_hi holds the state at wc_prev
+        wc_prev = 0.0
+        balanced = False
+        for _ in range(settings.max_iter):      # cage speed steps at this film
+            c_spin = free.inertia * abs(wc) * Z / (2.0 * np.pi)
+            reach = rp * 2.0 * np.pi / (Z * abs(wc))
+            settled = False
+            for _ in range(settings.max_iter):      # sweeps along the orbit
+                solves = 0
+                j = first
+                for _ in range(Z):
+                    u = (j - direction + Z) % Z
+                    base = gap[u]
+                    if not active[j]:
+                        xs[j, 0] = xs[u, 0]
+                        xs[j, 1] = wc
+                        gap[j] = max(-h, min(h, base))
+                        j = _orbit_successor(j, direction, Z)
+                        continue
+                    terms = FreeRollerTerms(xs[u, 0], c_spin, wc, base, reach, h, free.k_pocket, free.transition, rp)
+                    if solved[j] and _free_residuals_at(xs[j], evs[j], terms, tol, case.par, r) <= 1.0:
+                        gap[j] = base + reach * (xs[j, 1] - wc)
+                        j = _orbit_successor(j, direction, Z)
+                        continue
+                    for a in range(m):
+                        x[a] = xs[j, a]
+                    chord = known[j]
+                    if not chord and jac.known[0]:
+                        _free_roller_jacobian(jac, j, x, case.par, terms, free.J[j])
+                        chord = True
+                    start[0] = wR[j]
+                    start[1] = psi[j]
+                    ok, F_pocket[j], known[j] = _solve_free_roller(j, x, start, terms, wi, case,
+                                                                   FreeRollerWork(tol, ev, r, free.J[j]),
+                                                                   settings.max_iter, chord)
+                    if not ok:
+                        failed = True
+                        break
+                    for a in range(m):
+                        xs[j, a] = x[a]
+                    for i in range(NEV):
+                        evs[j, i] = ev[i]
+                    gap[j] = base + reach * (x[1] - wc)
+                    solved[j] = True
+                    solves += 1
+                    j = _orbit_successor(j, direction, Z)
+                if failed:
+                    break
+                # with no roller on a wall the places must repeat after a lap: the cage at the rollers' mean orbit
+                # speed at once (it moves no residual but by c_spin), the places centred in the play
+                lap = 0.0
+                walls = 0
+                for j in range(Z):
+                    if active[j]:
+                        lap += reach * (xs[j, 1] - wc)
+                        if abs(gap[j]) > h:
+                            walls += 1
+                if walls == 0:
+                    if abs(lap) > POCKET_LAP_TOLERANCE * h:
+                        wc += lap / (reach * Z)
+                        c_spin = free.inertia * abs(wc) * Z / (2.0 * np.pi)
+                        reach = rp * 2.0 * np.pi / (Z * abs(wc))
+                        solves += 1         # a sweep more, at that cage speed
+                    centre = 0.5 * (gap.max() + gap.min())
+                    for j in range(Z):
+                        gap[j] -= centre
+                if solves == 0:
+                    settled = True
+                    break
+            if failed and have_state and retreats < MAX_HALVINGS:
+                # a roller's solve failed at this cage speed, started from a state solved far from it: back to
+                # the last state solved (a bracket's end) and half the step
+                _restore_state(at_lo if wc_prev == lo else at_hi, xs, evs, F_pocket, gap)
+                for j in range(Z):
+                    solved[j] = active[j]
+                wc = 0.5 * (wc + wc_prev)
+                failed = False
+                retreats += 1
+                continue
+            if failed or not settled:
+                break
+            # the places of the rollers inside the play (which do not enter their residuals) from the places the
+            # lap ended with: the first roller's came from the lap before
             j = first
             for _ in range(Z):
                 u = (j - direction + Z) % Z
-                base = gap[u]
                 if not active[j]:
-                    xs[j, 0] = xs[u, 0]
-                    xs[j, 1] = wc
-                    gap[j] = max(-h, min(h, base))
-                    j = _orbit_successor(j, direction, Z)
-                    continue
-                terms = FreeRollerTerms(xs[u, 0], c_spin, wc, base, reach, h, free.k_pocket, free.transition, rp)
-                if solved[j] and _free_residuals_at(xs[j], evs[j], terms, tol, case.par, r) <= 1.0:
-                    gap[j] = base + reach * (xs[j, 1] - wc)
-                    j = _orbit_successor(j, direction, Z)
-                    continue
-                for a in range(m):
-                    x[a] = xs[j, a]
-                chord = known[j]
-                if not chord and jac.known[0]:
-                    _free_roller_jacobian(jac, j, x, case.par, terms, free.J[j])
-                    chord = True
-                start[0] = wR[j]
-                start[1] = psi[j]
-                ok, F_pocket[j], known[j] = _solve_free_roller(j, x, start, terms, wi, case,
-                                                               FreeRollerWork(tol, ev, r, free.J[j]),
-                                                               settings.max_iter, chord)
-                if not ok:
-                    failed = True
-                    break
-                for a in range(m):
-                    xs[j, a] = x[a]
-                for i in range(NEV):
-                    evs[j, i] = ev[i]
-                gap[j] = base + reach * (x[1] - wc)
-                solved[j] = True
-                solves += 1
+                    gap[j] = max(-h, min(h, gap[u]))
+                elif abs(gap[j]) <= h:
+                    gap[j] = gap[u] + reach * (xs[j, 1] - wc)
                 j = _orbit_successor(j, direction, Z)
-            if failed:
-                break
-            if solves == 0:
-                settled = True
-                break
-        if failed or not settled:
-            break
-        # the cage
-        F = 0.0
-        walls = 0
-        lap = 0.0
-        for j in range(Z):
-            if active[j]:
-                F += evs[j, EV_TZ]
-                lap += reach * (xs[j, 1] - wc)
-                if abs(gap[j]) > h:
-                    walls += 1
-        wc_new = wc
-        if walls == 0:
-            if abs(lap) > POCKET_LAP_TOLERANCE * h:
-                wc_new = wc + lap / (reach * Z)       # the mean orbit speed
-            centre = 0.5 * (gap.max() + gap.min())
+            # the cage
+            F = 0.0
+            walls = 0
+            lap = 0.0
             for j in range(Z):
-                gap[j] -= centre
-        elif abs(F) > tol_cage:
-            # regula falsi with the Illinois modification in a bracket (Dowell & Jarratt 1971); before one, a
-            # secant step (first from an earlier pass's slope, else the rollers on walls: each one's grip on
-            # the rings, the rigid solve's slope of its z-moment with its orbit speed, its spin balanced, in
-            # series with the walls' stiffness r_pocket k_pocket r_pocket dt (1 + n), n the rollers inside the
-            # play since the last one on a wall, whose places move by -r_pocket dt per unit cage speed), at
-            # most CAGE_PROBE_STEP x 2^k of the cage speed at the k-th step
-            if F > 0.0:
-                if lo == wc_prev:
-                    F_hi *= 0.5         # Illinois: the other end stayed twice
-                lo = wc
-                F_lo = F
-            else:
-                if hi == wc_prev:
-                    F_lo *= 0.5
-                hi = wc
-                F_hi = F
-            if hi - lo <= 4.0 * np.finfo(np.float64).eps * abs(wc):
-                break       # no cage speed balances the cage to its tolerance: not converged
-            # The balance is flat while the rollers on walls are light, steep once a loaded roller meets
-            # one: unless a roller met a wall since the last point, no step short of the cage speed where
-            # the next roller inside the play meets the wall the balance needs
-            slope = 0.0
-            contact = np.inf
-            chain = 0
-            j = first
-            for k in range(2 * Z):
-                if active[j] and abs(gap[j]) > h:
-                    grip = jac.dTdc[j] - jac.dTdw[j] * jac.dMdc[j] / (jac.dMdw[j] - c_spin)
-                    if k >= Z and jac.known[0] and grip < 0.0:
-                        slope -= 1.0 / (1.0 / (rp * free.k_pocket * reach * (1 + chain)) - 1.0 / grip)
-                    chain = 0
-                elif active[j]:
-                    chain += 1
-                    if k >= Z:
-                        room = gap[j] + h if F > 0.0 else h - gap[j]
-                        contact = min(contact, room / (reach * chain))
-                j = _orbit_successor(j, direction, Z)
-            if np.isfinite(lo) and np.isfinite(hi):
-                wc_new = (lo * F_hi - hi * F_lo) / (F_hi - F_lo)
-            else:
-                if have_prev:
-                    slope = (F - F_prev) / (wc - wc_prev)
-                elif free.slope[0] < 0.0:
-                    slope = free.slope[0]
+                if active[j]:
+                    F += evs[j, EV_TZ]
+                    lap += reach * (xs[j, 1] - wc)
+                    if abs(gap[j]) > h:
+                        walls += 1
+            wc_new = wc
+            if walls == 0:
+                if abs(lap) > POCKET_LAP_TOLERANCE * h:
+                    wc_new = wc + lap / (reach * Z)       # the mean orbit speed
+                centre = 0.5 * (gap.max() + gap.min())
+                for j in range(Z):
+                    gap[j] -= centre
+            elif abs(F) > tol_cage:
+                # Newton with the balance's slope from the rollers' linearisations (_cage_slope), within a
+                # bracket: outside it regula falsi with the Illinois modification (Dowell & Jarratt 1971); before
+                # a bracket, steps of at most CAGE_PROBE_STEP x 2^k of the cage speed at the k-th step
+                if F > 0.0:
+                    if lo == wc_prev:
+                        F_hi *= 0.5         # Illinois: the other end stayed twice
+                    lo = wc
+                    F_lo = F
+                    _keep_state(at_lo, F, xs, evs, F_pocket, gap)
+                else:
+                    if hi == wc_prev:
+                        F_lo *= 0.5
+                    hi = wc
+                    F_hi = F
+                    _keep_state(at_hi, F, xs, evs, F_pocket, gap)
+                if hi - lo <= CAGE_SPEED_RESOLUTION * abs(wc):
+                    # the balance still changes sign within CAGE_SPEED_RESOLUTION: it jumps there (a roller's skew
+                    # going over to its other pocket wall: with skew free each roller may rest on either,
+                    # sim.physics.friction "Roller skew"; the time domain's steady state then repeats with the cage
+                    # turn, not the roller pass) or is that steep. The steady state spends shares of the time in
+                    # both states that balance the cage: their mean in those shares (a continuous balance: the
+                    # last step of regula falsi)
+                    _mean_state(at_lo, at_hi, xs, evs, F_pocket, gap)
+                    wc = hi
+                    balanced = True
+                    break
+                slope = _cage_slope(free, active, reach, first, direction, jac, c_spin)
                 limit = CAGE_PROBE_STEP * abs(wc) * 2.0 ** probes
-                step = -F / slope if slope < 0.0 else limit * np.sign(F)
-                wc_new = wc + max(-limit, min(limit, step))
-                probes += 1
-            if np.isfinite(contact) and walls <= walls_prev:
-                jump = wc + np.sign(F) * contact * (1.0 + CONTACT_OVERSHOOT)
-                if lo < jump < hi and abs(jump - wc) > abs(wc_new - wc):
-                    wc_new = jump
-            if have_prev and (F - F_prev) / (wc - wc_prev) < 0.0:
-                free.slope[0] = (F - F_prev) / (wc - wc_prev)
-            wc_prev = wc
-            F_prev = F
-            walls_prev = walls
-            have_prev = True
-        moved = wc_new != wc
-        wc = wc_new
+                wc_new = wc - F / slope if slope < 0.0 else wc + limit * np.sign(F)
+                # the slope holds until the next roller inside the play meets the wall the balance needs (the
+                # places move by -reach per unit cage speed per slot since the last roller on a wall, the rollers
+                # that carry nothing passing their place on): no Newton step far beyond it
+                contact = np.inf
+                chain = 0
+                j = first
+                for k in range(2 * Z):
+                    if active[j] and abs(gap[j]) > h:
+                        chain = 0
+                    elif active[j]:
+                        chain += 1
+                        if k >= Z:
+                            room = gap[j] + h if F > 0.0 else h - gap[j]
+                            contact = min(contact, room / (reach * chain))
+                    j = _orbit_successor(j, direction, Z)
+                if abs(wc_new - wc) > contact * (1.0 + CONTACT_OVERSHOOT):
+                    wc_new = wc + np.sign(F) * contact * (1.0 + CONTACT_OVERSHOOT)
+                if not (lo < wc_new < hi):
+                    if np.isfinite(lo) and np.isfinite(hi):
+                        wc_new = (lo * F_hi - hi * F_lo) / (F_hi - F_lo)
+                    else:
+                        wc_new = wc + max(-limit, min(limit, wc_new - wc))
+                        probes += 1
+                wc_prev = wc
+                have_state = True
+            if wc_new == wc:
+                balanced = True
+                break
+            wc = wc_new
+        if failed or not balanced:
+            break
+        # the film at the solution's spins and cage speed
         stale = np.zeros(Z, dtype=np.bool_)
         film_cage = abs(wc - wc_film) > FREE_FILM_SPIN_TOLERANCE * abs(wc_film)
         if film_cage:
@@ -1119,11 +1321,10 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                 stale[j] = True
                 solved[j] = False
                 w_film[j] = xs[j, 0]
-        if not moved and not np.any(stale):
+        if not np.any(stale):
             converged = True
             break
-        if np.any(stale):
-            lubrication_state(w_film, wc_film, wi, stale, case)
+        lubrication_state(w_film, wc_film, wi, stale, case)
     free.wc[0] = wc
     for i in range(NEV):
         totals[i] = 0.0
