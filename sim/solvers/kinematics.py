@@ -163,7 +163,7 @@ MAX_HALVINGS = 30
 FREE_SKEW_WALL_START = 1.001
 
 
-# A speed held at a value (a held roller's spin in the rigid solve, its orbit speed in the free one)
+# A speed held at a value (a held roller's spin in the rigid solve)
 # meets its residual's tolerance where it is within HELD_SPEED_TOLERANCE of that value: far below any
 # speed difference that moves a loss (the residual is linear in the speed, so one Newton step meets it).
 HELD_SPEED_TOLERANCE = 1e-9
