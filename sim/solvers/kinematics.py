@@ -914,6 +914,24 @@ def _orbit_successor(j, direction, Z):
 
 
 @internal_kernel
+def _slot(free, wc, Z):
+    """(c_spin = I_x |omega_c| Z / (2 pi) [N mm s], the spin inertia along the orbit; reach = r_pocket dt
+    [mm s], the place a roller moves over the slot's passage dt = 2 pi / (Z |omega_c|) per rad/s of
+    orbit speed above the cage's) at the cage speed wc [rad/s] (module docstring)."""
+    dt = 2.0 * np.pi / (Z * abs(wc))
+    return free.inertia * abs(wc) * Z / (2.0 * np.pi), free.r_pocket * dt
+
+
+@internal_kernel
+def _centre_in_play(gap):
+    """Shifts the places ``gap`` [mm] by their common offset so that they are centred in the play (no
+    roller on a wall: the offset is free, module docstring "Pocket play")."""
+    centre = 0.5 * (gap.max() + gap.min())
+    for j in range(gap.shape[0]):
+        gap[j] -= centre
+
+
+@internal_kernel
 def _place_shares(free, active, reach, jac, c_spin, share, grip):
     """Each roller's linearised response to a change e = d base - reach d omega_c of its place's start
     (its base) and the cage speed, at the free rollers' present solution (:data:`FreeRollers` ``free``:
@@ -1146,8 +1164,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
         wc_prev = 0.0
         balanced = False
         for _ in range(settings.max_iter):      # cage speed steps at this film
-            c_spin = free.inertia * abs(wc) * Z / (2.0 * np.pi)
-            reach = rp * 2.0 * np.pi / (Z * abs(wc))
+            c_spin, reach = _slot(free, wc, Z)
             settled = False
             for _ in range(settings.max_iter):      # sweeps along the orbit
                 solves = 0
@@ -1202,12 +1219,9 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                 if walls == 0:
                     if abs(lap) > POCKET_LAP_TOLERANCE * h:
                         wc += lap / (reach * Z)
-                        c_spin = free.inertia * abs(wc) * Z / (2.0 * np.pi)
-                        reach = rp * 2.0 * np.pi / (Z * abs(wc))
+                        c_spin, reach = _slot(free, wc, Z)
                         solves += 1         # a sweep more, at that cage speed
-                    centre = 0.5 * (gap.max() + gap.min())
-                    for j in range(Z):
-                        gap[j] -= centre
+                    _centre_in_play(gap)
                 if solves == 0:
                     settled = True
                     break
@@ -1233,23 +1247,17 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                 elif abs(gap[j]) <= h:
                     gap[j] = gap[u] + reach * (xs[j, 1] - wc)
                 j = _orbit_successor(j, direction, Z)
-            # the cage
+            # the cage (without a roller on a wall the sweeps left it at the mean orbit speed)
             F = 0.0
             walls = 0
-            lap = 0.0
             for j in range(Z):
                 if active[j]:
                     F += evs[j, EV_TZ]
-                    lap += reach * (xs[j, 1] - wc)
                     if abs(gap[j]) > h:
                         walls += 1
             wc_new = wc
             if walls == 0:
-                if abs(lap) > POCKET_LAP_TOLERANCE * h:
-                    wc_new = wc + lap / (reach * Z)       # the mean orbit speed
-                centre = 0.5 * (gap.max() + gap.min())
-                for j in range(Z):
-                    gap[j] -= centre
+                _centre_in_play(gap)
             elif abs(F) > tol_cage:
                 # Newton with the balance's slope from the rollers' linearisations (_cage_slope), within a
                 # bracket: outside it regula falsi with the Illinois modification (Dowell & Jarratt 1971); before
