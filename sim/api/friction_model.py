@@ -299,7 +299,8 @@ class FrictionModel:
         psi[:] = psi[source]
         loads[:] = loads[source]
         # N mm/s; with free rollers the sliding power holds their spin-up slip (sim.solvers.kinematics,
-        # "Spin inertia"): the tractions spin each roller from the speed it arrives with to its own
+        # "Spin inertia": the tractions spin each roller from the speed it arrives with to its own) and the
+        # cage power the pocket walls' work on the rollers moving into them ("Pocket play")
         power = totals[EV_P0:EV_P0 + NC]
         srr, film_um, lam = film_outputs(case, load, wc, wR, wi)
         # the torque is power / omega_i where the speeds are imposed: at speed 0 (Coulomb friction, the
