@@ -370,6 +370,20 @@ class Geometry:
         return self.alpha + self.gamma
 
     @property
+    def outer_normal_angle_min(self):
+        """Smallest angle to the bearing axis of the outer raceway's normal over the roller's length
+        [rad]: the TRB's straight cup, alpha + gamma; the TSRB's arc at the roller's large end, at most
+        alpha + arctan(rho'(Lwe/2)) (the raceway arc, of radius PCR (2 - kappa) >= PCR, shares the
+        roller's normal at the contact points and turns more slowly along the roller, so that bound
+        is below the raceway's). Each roller presses the inner ring along the outer contact normals
+        (the roller's force balance, less friction and centrifugal force, which only lowers the
+        radial part), so no single-row equilibrium has Fa / Fr below tan of it
+        (:meth:`sim.api.bearing_model.BearingModel.check_limits`)."""
+        if self.type == "TSRB":
+            return self.alpha + float(np.arctan(self.roller_profile_slope(0.5 * self.Lwe)))
+        return self.cup_angle
+
+    @property
     def cone_angle(self):
         """Inner raceway (cone) contact angle alpha - gamma [rad] of the nominal geometry (MODEL.md 2)."""
         return self.alpha - self.gamma

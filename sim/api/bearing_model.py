@@ -174,7 +174,13 @@ class BearingModel:
         - P0 <= solver.max_static_load_ratio x C0 (ISO 76; elastic contacts), with P0 and C0 at
           ratings_alpha (the reported P0, C0) and at the cup angle alpha + gamma, which carries
           the axial load (for a TRB both are the same angle): a configured TSRB ratings_alpha does
-          not hide a roller-axis angle too flat to carry Fa elastically.
+          not hide a roller-axis angle too flat to carry Fa elastically;
+        - Fa > Fr tan(a_min) with Fr > 0, a_min the outer raceway normal's smallest angle to the axis
+          (:attr:`sim.geometry.Geometry.outer_normal_angle_min`): each roller presses the inner
+          ring along the outer contact normals, so a single row carries Fa / Fr >= tan(a_min) only,
+          reached with one loaded roller (Sjovall's load zone epsilon -> 0; Harris & Kotzalas 2007,
+          Rolling Bearing Analysis, 7.4); below it the inner ring has no equilibrium with its axial
+          position free (an opposed bearing would take the rest, which the model lacks).
         """
         g = self.geometry
         s = self.settings
@@ -192,6 +198,7 @@ class BearingModel:
                 worst = (P0 / C0, P0, C0, angle, source)
         ratio, P0, C0, angle, source = worst
         if ratio <= k:
+            self._check_axial_share(op)
             return
         with np.errstate(divide="ignore"):
             f = ratings.load_factors(angle)
@@ -204,6 +211,18 @@ class BearingModel:
                              f"<= {k * C0:.6g} N ({why})")
         raise InputError(f"load.Fa = {op.Fa:g} N is outside the allowed range for this bearing at load.Fr = "
                          f"{op.Fr:g} N: <= {(k * C0 - f['X0'] * op.Fr) / f['Y0']:.6g} N ({why})")
+
+    def _check_axial_share(self, op: OperatingPoint):
+        """The single-row equilibrium bound Fa > Fr tan(a_min) of :meth:`check_limits`."""
+        angle = self.geometry.outer_normal_angle_min
+        bound = op.Fr * float(np.tan(angle))
+        if op.Fr > 0.0 and not op.Fa > bound:
+            raise InputError(
+                f"load.Fa = {op.Fa:g} N is outside the allowed range for this bearing at load.Fr = {op.Fr:g} N: "
+                f"> Fr tan({float(np.degrees(angle)):.4g} deg) = {bound:.6g} N, the outer raceway normal's smallest "
+                "angle to the axis: each roller presses the inner ring along its outer contact normals, so a single "
+                "row carries Fa / Fr >= tan of that angle only, with one roller loaded; below it the inner ring has "
+                "no equilibrium with its axial position free (an opposed bearing would take the rest)")
 
     def body_loads(self, op: OperatingPoint):
         """Body loads on a loaded roller, rolling kinematics (2.20), (2.22): BodyLoads(centrifugal
