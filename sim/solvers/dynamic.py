@@ -197,13 +197,15 @@ def angular_velocity(H, A, Ix, Iy, w):
 
 
 @kernel
-def rhs(y, problem, work, dy, rol, tot, shared_rows):
+def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
     """Time derivative ``dy`` of the state ``y`` (layout above) and the outputs.
 
     rol (Z, NRO) and tot (NTO,) are written (module constants); shared_rows (Z, NSH) receives
     each roller's contribution to the derivatives of the shared states (inner-ring and cage
     rates, quadrature states [N mm/s, N mm]; the finite-difference Jacobian, :func:`jacobian`,
-    separates the rollers by it).
+    separates the rollers by it). ``film``: each roller's film is taken at this state
+    (:func:`sim.physics.friction.roller_lubrication`); False: the film of the last call that took it
+    is kept (the Jacobian's perturbed states, :func:`jacobian`).
     """
     bearing = problem.bearing
     case = problem.case
@@ -333,7 +335,8 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows):
             # the film at this roller's loads, speed and orbit speed, so that it follows the roller
             # around the bearing (under a radial load a roller crosses the load zone in a fraction
             # of a window)
-            roller_lubrication(j, wR, wphi, body.wi, case, work.film)
+            if film:
+                roller_lubrication(j, wR, wphi, body.wi, case, work.film)
             # the roller's rates relative to its meridian frame (orbiting at phi'): skew rate psi' = Omega.v',
             # tilt rate Omega.w'' = theta' cos(psi), centre velocity (r', z') [rad/s, mm/s]; the inner
             # ring's translation velocity along e_r, e_t, e_z at the roller's azimuth [mm/s], in the
@@ -445,7 +448,16 @@ def jacobian(y, f0, rows0, problem, work, scale, J, rol, tot):
     with the shared rows separated by roller). Nothing depends on the quadrature states: their
     columns are zero. (Left zero, their rows lagged the Newton iterations of the implicit steps
     by one iteration, which made scipy's Radau recompute the Jacobian more often: TRB 32208
-    4.5 kN 2000 rpm, 10 revolutions, 10987 rhs and 455 Jacobians against 9861 and 390.)
+    4.5 kN 2000 rpm, 10 revolutions, 10987 rhs and 455 Jacobians against 9861 and 390.) Without
+    skew the skew column is zero too (psi is held at 0).
+
+    The film is held at f0's (``rhs`` with film False; the caller computes f0 just before, so
+    ``problem.case.film`` holds the film at y): the Jacobian only steers the implicit steps'
+    Newton iterations, whose residuals take the film at every state, and the film's share of the
+    derivatives is small (the film thickness goes as the entrainment speed^0.67, which the slip
+    moves by ~1e-3 of it; the thermal viscosity factor, the film's costly part, changes slowly).
+    Measured (benchmarks/bench_dynamic.py, 10 revolutions): the same numbers of right-hand sides
+    and Jacobians within 1-8 %, and the torque at the end unchanged to 0.1 N mm.
     """
     Z = problem.bearing.Z
     nst = y.shape[0]
@@ -458,10 +470,12 @@ def jacobian(y, f0, rows0, problem, work, scale, J, rol, tot):
         for b in range(nst):
             J[a, b] = 0.0
     for k in range(NS):
+        if k == PSI and not problem.body.skew:
+            continue        # psi is held at 0 without skew: its column is zero (no rhs reads it)
         for j in range(Z):
             o = j * NS + k
             yp[o] = y[o] + FD_STEP * max(abs(y[o]), scale[o])
-        rhs(yp, problem, work, fp, rol, tot, rows1)
+        rhs(yp, problem, work, fp, rol, tot, rows1, False)
         for j in range(Z):
             o = j * NS
             h = yp[o + k] - y[o + k]
@@ -473,7 +487,7 @@ def jacobian(y, f0, rows0, problem, work, scale, J, rol, tot):
     for c in range(o_ring, o_en):
         yp[c] = y[c] + FD_STEP * max(abs(y[c]), scale[c])
         h = yp[c] - y[c]
-        rhs(yp, problem, work, fp, rol, tot, rows1)
+        rhs(yp, problem, work, fp, rol, tot, rows1, False)
         for i in range(nst):
             J[i, c] = (fp[i] - f0[i]) / h
         yp[c] = y[c]
@@ -521,7 +535,7 @@ class Integration:
 
     def f(self, t, y):
         dy = np.empty_like(y)
-        rhs(y, self.problem, self.work, dy, self.rol, self.tot, self.shared_rows)
+        rhs(y, self.problem, self.work, dy, self.rol, self.tot, self.shared_rows, True)
         self.rhs_calls += 1
         return dy
 
