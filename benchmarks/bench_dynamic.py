@@ -40,14 +40,16 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   180 Jacobians), rhs 0.975 ms. With ``--set solver.dynamic.start=quasi_static`` (a test run on the other
   core): 26.9 and 11.2 s, rhs 0.899 and 1.006 ms: the cost is per revolution, not the start's transient.
 - 2026-11-28, the Jacobian's perturbed right-hand sides with the film of the unperturbed state and no skew
-  column without skew (sim.solvers.dynamic.jacobian) against its base 3130dca, median of 3 runs each, on
-  a machine ~2.4x slower than the one above (the base's TRB 32208 rhs 2.30 ms against 0.947 ms there;
-  load 1-2): TRB 32208 65.0 -> 54.3 s CPU (6.50 -> 5.43 s/rev; 11660 -> 11743 rhs, 478 -> 469
-  Jacobians), pinion TSRB 25.7 -> 23.4 s CPU (5389 -> 5321 rhs, 180 -> 195 Jacobians); torque at the
-  end unchanged (746.5 and 4974.9 N mm). The right-hand side itself is unchanged (2.2-2.3 ms and
-  1.7-1.9 ms here, above the 1 ms target on this machine: 85 % of it is friction, 0.34 of 2.31 ms the
-  normal contact alone at the TRB's start state; the raceway traction costs 67-104 us per roller, up
-  to 640 Eyring stress solves where skew or rates make the slip two-sided, the rest is the film).
+  column without skew (sim.solvers.dynamic.jacobian, 6e00aa4) against its base 3130dca, on a machine
+  ~2x slower than the one above (the base's rhs 1.6-2.3 ms against 0.947 ms there), two alternating runs
+  each, the other core idle: TRB 32208 56.4 / 55.7 -> 51.2 / 54.4 s CPU (-6 %; 11660 -> 11743 rhs, 478
+  -> 469 Jacobians), pinion TSRB 22.5 / 25.6 -> 21.9 / 23.2 s CPU (-5 %; 5389 -> 5321 rhs, 180 -> 195
+  Jacobians); torque at the end unchanged (746.47 and 4974.87 N mm). (Medians of 3 with a test run on
+  the other core gave 65.0 -> 54.3 and 25.7 -> 23.4 s: that load moves a run by 10-15 %.) The right-hand
+  side itself is unchanged and above the 1 ms target on this machine: 85 % of it is friction (0.34 of
+  2.31 ms the normal contact alone at the TRB's start state); the raceway traction costs 67-104 us per
+  roller (up to 640 Eyring stress solves where skew or rates make the slip two-sided), the rest is the
+  film.
 
 Run from the repository root::
 
