@@ -27,7 +27,7 @@ Marquardt: without a wall contact the places' common offset is free), from the s
 solution in the fast TRB case: so this checks that the solver's speeds, places and cage speed solve
 the equations as written here, all at once, and stay there through the film passes), with
 the film of every loaded roller (sim.physics.friction.lubrication_state) recomputed at the spins
-and cage speed of the previous pass until they no longer change. The solver sweeps the rollers
+and orbit speeds of the previous pass until they no longer change. The solver sweeps the rollers
 one by one along the orbit instead and moves the cage speed between sweeps
 (sim.solvers.kinematics.free_roller_speeds). Each case is run by the time-domain solver too
 (steady state from rolling kinematics). Writes orbit_inertia.md beside this file.
@@ -92,7 +92,7 @@ def orbit_experiment(overrides):
     case = friction.problem(op, raw).case
     Z = wR.shape[0]
     loaded = raw["Q"].sum(axis=1) + raw["Q_rib"] > 0.0
-    lubrication_state(wR.copy(), wc0, wi, loaded, case)
+    lubrication_state(wR.copy(), np.full(Z, wc0), wi, loaded, case)
     dyn = resolved(sim.load_config(overrides + ["solver=dynamic"]))["solver"]["dynamic"]
     body = dynamic_model.prepare(model, friction, op, dyn).problem.body
     Ix, rp, h, k, d_s = body.Ix, body.r_pocket, body.half_play, body.k_pocket, body.pocket_transition
@@ -128,11 +128,11 @@ def orbit_experiment(overrides):
         r[2 * Z + 1] = (g[0] - g0) / h                   # the lap closes
         return r
 
-    # film passes: the film (thermal viscosity, entrainment) at the speeds of the previous pass, as
-    # the quasi-static kinematics iterate it (sim.solvers.kinematics)
+    # film passes: the film (thermal viscosity, entrainment) at the spins and orbit speeds of the previous
+    # pass, as the quasi-static kinematics iterate it (sim.solvers.kinematics)
     free = res["kinematics"][4]
     x = np.concatenate([res["kinematics"][1], free.orbit, [free.wc[0], free.gap[0]]])
-    lubrication_state(x[:Z].copy(), x[2 * Z], wi, loaded, case)
+    lubrication_state(x[:Z].copy(), x[Z:2 * Z].copy(), wi, loaded, case)
     for _ in range(FILM_PASSES):
         sol = root(residual, x, method="lm", options={"xtol": 1e-14, "ftol": 1e-14, "maxiter": 40000})
         # Levenberg-Marquardt may stop at its call limit near a solution (the walls' kinks; without a wall the
@@ -143,7 +143,7 @@ def orbit_experiment(overrides):
                 int((np.abs(free.gap) > h).sum()), f"not solved: {sol.message} (moment residual {worst:.1e} N mm)"
         change = np.abs(sol.x[:2 * Z + 1] - x[:2 * Z + 1]).max() / np.abs(sol.x[:2 * Z + 1]).max()
         x = sol.x
-        lubrication_state(x[:Z].copy(), x[2 * Z], wi, loaded, case)
+        lubrication_state(x[:Z].copy(), x[Z:2 * Z].copy(), wi, loaded, case)
         if change < FILM_TOLERANCE:
             break
     w, orbit, wc, g0 = x[:Z], x[Z:2 * Z], x[2 * Z], x[2 * Z + 1]

@@ -274,14 +274,14 @@ class FrictionModel:
             if warm:
                 free_start = FreeRollers(start[4].orbit.copy(), start[4].gap.copy(), np.array([wc]), start[4].J.copy(),
                                          start[4].known.copy(), *pocket)
-                lubrication_state(wR, wc, wi, full, case)
+                lubrication_state(wR, free_start.orbit, wi, full, case)
             else:
                 wR[:] = wR[source]
                 psi[:] = psi[source]
                 m = 3 if par.skew else 2
                 free_start = FreeRollers(np.full(Z, wc), np.zeros(Z), np.array([wc]), np.zeros((Z, m, m)),
                                          np.zeros(Z, dtype=np.bool_), *pocket)
-                lubrication_state(wR, wc, wi, represented, case)
+                lubrication_state(wR, free_start.orbit, wi, represented, case)
             # the rigid solve's Jacobian per roller: its cage-moment rows are weighted by the classes
             jac = pb.jac._replace(**{name: getattr(pb.jac, name)[source] / (pb.weight[source] if name.startswith("dT")
                                                                               else 1.0)

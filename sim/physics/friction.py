@@ -484,16 +484,19 @@ def _viscosity_factor_at(contact, par, quad, npts, pts):
 
 
 @kernel
-def lubrication_state(wR, wc, wi, active, case):
+def lubrication_state(wR, orbit, wi, active, case):
     """Film, solid load share, rolling resistance forces, Hertz data and thermal viscosity factor
-    of every loaded contact, at the speeds wR, wc: writes ``case.film``.
+    of every loaded contact, at the speeds wR, orbit: writes ``case.film``.
 
     Parameters
     ----------
     wR : ndarray (Z,)
         Roller speeds about u' [rad/s].
-    wc, wi : float
-        Cage and inner-ring speeds [rad/s].
+    orbit : ndarray (Z,)
+        Each roller's orbit speed [rad/s]: the cage's, or a free roller's own
+        (sim.solvers.kinematics, "Pocket play"), as the time domain takes it.
+    wi : float
+        Inner-ring speed [rad/s].
     active : ndarray (Z,) of bool
         Rollers to evaluate; the others' film is left as it is (the caller never reads it).
     case : FrictionCase
@@ -505,7 +508,7 @@ def lubrication_state(wR, wc, wi, active, case):
     scratch = film_scratch(n, case.quad.wq.shape[0])
     for j in range(case.bearing.q.shape[0]):
         if active[j]:
-            roller_lubrication(j, wR[j], wc, wi, case, scratch)
+            roller_lubrication(j, wR[j], orbit[j], wi, case, scratch)
 
 
 @kernel

@@ -623,7 +623,7 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     loads_known = False     # roller_loads hold the friction loads at the solution
     ev = np.empty(NEV)
     for film_pass in range(passes):
-        lubrication_state(wR, wc, wi, active, case)
+        lubrication_state(wR, np.full(wR.shape[0], wc), wi, active, case)
         if settings.traction:
             final = settings.final and film_pass == passes - 1
             loose = FINAL_TOLERANCE_FACTOR if final else settings.seed_factor
@@ -887,7 +887,7 @@ def _free_roller_jacobian(jac, j, x, par, terms, J):
 # again. The spin inertia moves the lightly loaded rollers' spins by up to a factor 40 from the rigid
 # solution's (module docstring); the film thickness goes as the entrainment speed^0.67 (Pan &
 # Hamrock 1989), so a spin within 1e-3 of its film's moves the film by < 7e-4 and the torque far less
-# (measured in the tests, tests/friction/test_orbit_inertia.py). The same for the cage speed.
+# (measured in the tests, tests/friction/test_orbit_inertia.py). The same for a roller's orbit speed.
 FREE_FILM_SPIN_TOLERANCE = 1e-3
 # A lap of the orbit whose pocket places, summed, move by less than this fraction of the half play
 # counts as periodic (free_roller_speeds, no roller on a wall): the orbit speeds then average to the
@@ -1089,9 +1089,11 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
     most to where the next roller meets a wall (CONTACT_OVERSHOOT), within a bracket (regula falsi
     outside it; where it narrows below CAGE_SPEED_RESOLUTION, the mean of the states at its ends that
     balances the cage; a roller whose solve fails sends the cage speed half way back to the last
-    state solved); at most settings.max_iter steps. Then the film of every roller whose spin, and of
-    all where the cage speed, moved by more than FREE_FILM_SPIN_TOLERANCE from its film's is taken
-    again and the cage balanced again (at most settings.max_iter film passes).
+    state solved); at most settings.max_iter steps. Then the film of every roller whose spin or orbit
+    speed moved by more than FREE_FILM_SPIN_TOLERANCE from its film's is taken again, at its own
+    spin and orbit speed (as the time domain's, sim.solvers.dynamic), and the cage balanced again (at
+    most settings.max_iter film passes). The film it starts with is the caller's, taken at the start's
+    spins and orbit speeds (``free.orbit``).
 
     Every roller is its own class (``settings.weight`` all 1: its neighbours differ); under a pure
     axial load, where the rigid cage's balance is every roller's own and no spin changes along the
@@ -1133,7 +1135,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
     h, rp = free.half_play, free.r_pocket
     wc = free.wc[0]
     w_film = wR.copy()               # the spins the rollers' film was taken at
-    wc_film = wc                     # ... and the cage speed
+    o_film = orbit.copy()            # ... and their orbit speeds (the start's: the caller's film)
     q = np.zeros(Z)
     for j in range(Z):
         xs[j, 0] = wR[j]
@@ -1319,20 +1321,20 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
             wc = wc_new
         if failed or not balanced:
             break
-        # the film at the solution's spins and cage speed
+        # the film at the solution's spins and orbit speeds (each roller's own, as its slip: where a roller
+        # rides on a pocket wall its orbit speed differs from the cage's by up to ~1 %, ten times its slip)
         stale = np.zeros(Z, dtype=np.bool_)
-        film_cage = abs(wc - wc_film) > FREE_FILM_SPIN_TOLERANCE * abs(wc_film)
-        if film_cage:
-            wc_film = wc
         for j in range(Z):
-            if active[j] and (film_cage or abs(xs[j, 0] - w_film[j]) > FREE_FILM_SPIN_TOLERANCE * abs(w_film[j])):
+            if active[j] and (abs(xs[j, 0] - w_film[j]) > FREE_FILM_SPIN_TOLERANCE * abs(w_film[j])
+                              or abs(xs[j, 1] - o_film[j]) > FREE_FILM_SPIN_TOLERANCE * abs(o_film[j])):
                 stale[j] = True
                 solved[j] = False
                 w_film[j] = xs[j, 0]
+                o_film[j] = xs[j, 1]
         if not np.any(stale):
             converged = True
             break
-        lubrication_state(w_film, wc_film, wi, stale, case)
+        lubrication_state(w_film, o_film, wi, stale, case)
     free.wc[0] = wc
     for i in range(NEV):
         totals[i] = 0.0

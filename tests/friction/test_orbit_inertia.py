@@ -42,7 +42,7 @@ def solved(overrides):
 
 def solved_again_at_the_final_film(friction, op, raw, fr):
     """The free rollers solved again from their solution with every loaded roller's film taken at
-    its solved spin (the solver takes it again only where a spin moved by more than
+    its solved spin and orbit speed (the solver takes it again only where one moved by more than
     FREE_FILM_SPIN_TOLERANCE): (spins, skews, orbit speeds, friction moments about the roller
     axes, loaded rollers, c, outer-ring torque, power [N mm/s], its problem, its FreeRollers, the
     z-moments of the rollers' contacts about the bearing axis [N mm])."""
@@ -57,7 +57,7 @@ def solved_again_at_the_final_film(friction, op, raw, fr):
     c = friction.roller_spin_inertia * wc * Z / (2.0 * np.pi)
     again = free._replace(orbit=free.orbit.copy(), gap=free.gap.copy(), wc=free.wc.copy(), J=free.J.copy(),
                           known=free.known.copy())
-    lubrication_state(wR, wc, pb.wi, loaded, pb.case)
+    lubrication_state(wR, free.orbit, pb.wi, loaded, pb.case)
     totals = np.zeros(NEV)
     loads = np.zeros((Z, 5))
     assert free_roller_speeds(pb.wi, wR, psi, again, pb.case, settings, totals, loads, pb.jac)

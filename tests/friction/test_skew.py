@@ -184,7 +184,7 @@ def synthetic(crown=0.0, tilt_load=0.0):
     wc = 100.0
     wR = np.array([wc * R_o / 5.0])
     wi = wc * (R_o + R_i) / R_i
-    F.lubrication_state(wR, wc, wi, np.ones(1, dtype=bool), case)
+    F.lubrication_state(wR, np.array([wc]), wi, np.ones(1, dtype=bool), case)
     return case, wR, wc, wi
 
 
