@@ -46,9 +46,9 @@ alternating runs, load 3.2-4.1, git worktrees of each commit): 8da0c47 26.0, 27.
 +17 %. The rest of today's +46 % is the physics compiled since (README, Benchmark).
 Machine speed (2026-11-28, session 26): on that session's machine (AMD EPYC, 2 cores; a pure-Python
 loop of 1e7 additions 1.18 s) the same code measured 10.8-12.5 ms (tsrb_reference) and 7.8-9.0 ms
-(trb_32208) in session 25 took 19.6-25.3 ms and 14.7-20.6 ms with friction, combined case (MISS
-against 15 ms; load 1.0-1.1, medians of 21, several runs), and session 24's code (dbf91b0) 22.2-26.0
-and 17.8-19.3 ms: the machine, not the code, about 2x slower. The targets are absolute; compare
+(trb_32208) in session 25 took 19.6-26.0 ms and 14.7-19.3 ms with friction, combined case (MISS
+against 15 ms; load 1.0-1.1, medians of 21, five runs), and session 24's code (dbf91b0) 22.2-25.3
+and 17.8-18.1 ms (two runs): the machine, not the code, about 2x slower. The targets are absolute; compare
 commits on one machine (git worktrees, alternating runs).
 """
 import argparse
