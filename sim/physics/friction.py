@@ -716,6 +716,16 @@ def pocket_wall_force(g, half_play, k_pocket, transition):
     return -sg * k_pocket * (pen - 0.5 * transition), 1.0
 
 
+
+@internal_kernel
+def pocket_wall_stiffness(g, half_play, k_pocket, transition):
+    """Local stiffness of :func:`pocket_wall_force`'s spring, the magnitude of dF/dg [N/mm] at g [mm]
+    (same arguments): 0 inside the play, k_pocket pen / transition over the onset, k_pocket beyond."""
+    pen = abs(g) - half_play
+    if pen <= 0.0:
+        return 0.0
+    return k_pocket * pen / transition if pen < transition else k_pocket
+
 @kernel
 def roller_friction(j, wR, psi, wc, wi, case, ev):
     """Friction of roller j at roller speed wR [rad/s], skew psi [rad] and cage speed wc [rad/s],

@@ -65,7 +65,7 @@ from sim._math.linalg import copy_vector, solve_dense
 from sim._math.roots import root_search, root_search_step
 from sim.physics.friction import (COMPONENTS, EV_MS, EV_MU, EV_P0, EV_TZ, NEV, NFL, cage_pocket_loads,
                                   friction_loads, lubrication_state, outer_rolling_speed, pocket_skew_couple,
-                                  pocket_wall_force, roller_friction)
+                                  pocket_wall_force, pocket_wall_stiffness, roller_friction)
 
 SLIDING = COMPONENTS.index("sliding")     # the loss component that takes the free rollers' spin-up slip
 CAGE = COMPONENTS.index("cage")           # ... and their pocket walls' work (free_roller_speeds)
@@ -871,9 +871,8 @@ def _free_roller_jacobian(jac, j, x, par, terms, J):
     J[1, 0] = jac.dTdw[j]
     J[1, 1] = jac.dTdc[j]
     place = terms.base + terms.reach * (x[1] - terms.wc)
-    depth = abs(place) - terms.half_play
-    if depth > 0.0:
-        J[1, 1] -= terms.r_pocket * terms.k_pocket * terms.reach * min(1.0, depth / terms.transition)
+    J[1, 1] -= terms.r_pocket * terms.reach * pocket_wall_stiffness(place, terms.half_play, terms.k_pocket,
+                                                                    terms.transition)
     if J.shape[0] > 2:
         J[0, 2] = jac.dMdp[j]
         J[1, 2] = jac.dTdp[j]
@@ -909,7 +908,8 @@ CONTACT_OVERSHOOT = 1e-3
 
 @internal_kernel
 def _orbit_successor(j, direction, Z):
-    """The azimuth slot after slot j along the orbit (direction +-1, the sign of the cage speed)."""
+    """The azimuth slot after slot j along the orbit (direction +-1, the sign of the cage speed; -direction:
+    the slot before it, where roller j arrives from)."""
     return (j + direction + Z) % Z
 
 
@@ -937,8 +937,8 @@ def _place_shares(free, active, reach, jac, c_spin, share, grip):
     (its base) and the cage speed, at the free rollers' present solution (:data:`FreeRollers` ``free``:
     places, Jacobians), written to ``share`` (Z,) (its place moves by share e) and ``grip`` (Z,) (its
     contacts' z-moment by grip e [N mm / mm]). A roller beyond the play (depth in the walls' spring,
-    local stiffness k_loc) holds its z-balance T_c(Omega) + r_p P(g) = 0, g = base + reach (Omega -
-    omega_c): with its grip a = -dT_c/dOmega (its spin, and skew, balanced: the Schur complement of its
+    local stiffness k_loc, :func:`pocket_wall_stiffness`) holds its z-balance T_c(Omega) + r_p P(g) = 0,
+    g = base + reach (Omega - omega_c): with its grip a = -dT_c/dOmega (its spin, and skew, balanced: the Schur complement of its
     Jacobian ``free.J[j]`` where known, else the rigid solve's ``jac``) and the walls' K = r_p k_loc
     reach, share a / (a + K) and grip a K / ((a + K) reach); a roller inside the play share 1, grip 0
     (one that carries nothing: inside the play share 1, on a wall 0)."""
@@ -953,7 +953,7 @@ def _place_shares(free, active, reach, jac, c_spin, share, grip):
         if not active[j]:
             share[j] = 0.0
             continue
-        K = rp * k * min(1.0, depth / d_s) * reach
+        K = rp * pocket_wall_stiffness(free.gap[j], h, k, d_s) * reach
         J = free.J[j]
         if free.known[j]:
             m = J.shape[0]
@@ -1002,7 +1002,7 @@ def _cage_slope(free, active, reach, first, direction, jac, c_spin):
     for _ in range(Z):
         u = share[j] * (u - reach)
         prod *= share[j]
-        j = (j + direction + Z) % Z
+        j = _orbit_successor(j, direction, Z)
     if prod >= 1.0:
         return 0.0      # no roller on a wall: the places' offset is free
     u = u / (1.0 - prod)
@@ -1010,7 +1010,7 @@ def _cage_slope(free, active, reach, first, direction, jac, c_spin):
     for _ in range(Z):
         slope += grip[j] * (u - reach)
         u = share[j] * (u - reach)
-        j = (j + direction + Z) % Z
+        j = _orbit_successor(j, direction, Z)
     return slope
 
 
@@ -1172,7 +1172,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                 solves = 0
                 j = first
                 for _ in range(Z):
-                    u = (j - direction + Z) % Z
+                    u = _orbit_successor(j, -direction, Z)
                     base = gap[u]
                     if not active[j]:
                         xs[j, 0] = xs[u, 0]
@@ -1243,7 +1243,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
             # lap ended with: the first roller's came from the lap before
             j = first
             for _ in range(Z):
-                u = (j - direction + Z) % Z
+                u = _orbit_successor(j, -direction, Z)
                 if not active[j]:
                     gap[j] = max(-h, min(h, gap[u]))
                 elif abs(gap[j]) <= h:
@@ -1343,7 +1343,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
         orbit[j] = xs[j, 1]
         # the spin-up slip, sum_j M_j omega_j = c_spin / 2 sum_j (omega_j - omega_j-1)^2 over the closed
         # orbit (module docstring, "Spin inertia"), with the sliding power
-        step = xs[j, 0] - xs[(j - direction + Z) % Z, 0]
+        step = xs[j, 0] - xs[_orbit_successor(j, -direction, Z), 0]
         totals[EV_P0 + SLIDING] += 0.5 * c_spin * step * step
         if not active[j]:
             for a in range(loads.shape[1]):
