@@ -34,7 +34,7 @@ CASE_VARIABLES = {
     "L_eff": ((), "mm", "effective (loaded) roller length, shorter of the two raceway contacts"),
     "edge_stress": ((), "1", "a contact runs onto a roller end (edge_interference > 0), where the roller's edge concentrates the pressure: pmax is then a slice average of that peak and grows with n_slices"),
     "edge_interference": (("race",), "1", "elastic interference extrapolated to the roller ends over the contact's largest elastic approach, worst roller and end (sim.physics.elasticity.edge_interference); > 0: edge contact"),
-    "ring_displacement": (("direction",), "mm", "inner-ring displacement (axial along Fa, radial along Fr)"),
+    "ring_displacement": (("direction",), "mm", "inner-ring displacement (axial along Fa, radial along Fr, lateral along y = z x Fr, which the friction of the load zone causes)"),
     "Q": (("roller", "race"), "N", "roller-raceway normal load"),
     "Q_rib": (("roller",), "N", "roller-end / rib normal load"),
     "pressure": (("race", "slice"), "MPa", "Hertz line-contact pressure along the most loaded roller"),
@@ -53,7 +53,7 @@ CASE_VARIABLES = {
     "srr": (("race", "slice"), "1", "slide-to-roll ratio along the most loaded roller, roller against ring (2.25)"),
     "film_thickness": (("race", "slice"), "um", "central EHL film thickness along the most loaded roller"),
     "lambda_ratio": (("race",), "1", "specific film thickness at the most loaded slice (2.27)"),
-    "residual": (("direction",), "N", "inner-ring force residual at the solution"),
+    "residual": (("direction",), "N", "inner-ring force residual at the solution (axial, radial, lateral)"),
     "converged": ((), "1", "solver converged"),
     "iterations": ((), "1", "ring Newton iterations"),
     "unrested_rollers": ((), "1", "rollers outside the load zone left unloaded where they should rest under their centrifugal force (a TRB's on the cup and rib, a TSRB's in the wedge between its raceways): where no equilibrium with the rest was found, the converged solution without it, their contact and its rolling loss neglected (sim.api.bearing_model.BearingModel.solve); 0 from the time-domain solver"),
@@ -191,7 +191,7 @@ INDEX_ATTRS = {"race": {"long_name": "raceway"}, "direction": {"long_name": "inn
 def _pandas_indexes(Z, n_slices):
     """The indexes of race, direction, component, roller, slice, built from numpy once (pandas
     Index construction is the slow part of an index)."""
-    values = {"race": RACES, "direction": ["axial", "radial"], "component": COMPONENTS, "roller": np.arange(Z),
+    values = {"race": RACES, "direction": ["axial", "radial", "lateral"], "component": COMPONENTS, "roller": np.arange(Z),
               "slice": np.arange(n_slices)}
     return {name: PandasIndex.from_variables({name: _var(name, data, {})}, options={})
             for name, data in values.items()}
@@ -271,7 +271,7 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     """
     g = geometry
     design, rating = _design_parts(g)
-    sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 2, "component": len(COMPONENTS)}
+    sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 3, "component": len(COMPONENTS)}
     data = {}
     for name, (dims, units, long_name) in CASE_VARIABLES.items():
         if name in OPTIONAL_VARIABLES and not any(name in res for res in results):
@@ -305,7 +305,7 @@ SERIES_VARIABLES = {
     "Q_rib_t": (("roller",), "N", "roller-end / rib normal load over time"),
     "pocket_force_t": (("roller",), "N", "cage pocket force on the roller along the rolling direction e_t"),
     "cage_speed_t": ((), "rpm", "cage speed over time"),
-    "ring_displacement_t": (("direction",), "mm", "inner-ring displacement over time (axial, radial along Fr)"),
+    "ring_displacement_t": (("direction",), "mm", "inner-ring displacement over time (axial, radial along Fr, lateral along y = z x Fr)"),
     "torque_t": ((), "N*mm", "frictional torque on the outer ring over time"),
     "drive_torque_t": ((), "N*mm", "torque that drives the inner ring at its speed over time"),
     "torque_component_t": (("component",), "N*mm", "loss power by mechanism / inner-ring speed over time"),
@@ -571,7 +571,7 @@ def build_batch_dataset(designs):
     index = {k: i for i, k in enumerate(union)}
     n_cases = len(union)
     computed = [d for d in designs if isinstance(d, DesignResult)]
-    sizes = {"race": 2, "direction": 2, "component": len(COMPONENTS),
+    sizes = {"race": 2, "direction": 3, "component": len(COMPONENTS),
              "roller": max((d.geometry.Z for d in computed), default=0),
              "slice": max((d.geometry.n_slices for d in computed), default=0)}
     # data variables, in order of first appearance (as the single-design Datasets hold them)

@@ -9,14 +9,21 @@ def case(Fa, Fr=0.0, speed=2000.0, tilt=0.0, oil_temperature=55.0):
     return OperatingPoint(float(Fa), float(Fr), float(speed), float(tilt), float(oil_temperature))
 
 
-def race_forces(model, raw, race=1, tilt_deg=0.0):
+def ring_in_meridian(raw, psi):
+    """The inner ring's displacement of a solved state seen in the meridian plane at azimuth psi
+    [rad]: (delta_a, delta_r cos(psi) + delta_y sin(psi)) [mm] (sim.solvers.quasi_static.solve_bearing)."""
+    da, dr, dy = raw["ring"]
+    return np.array([da, dr * np.cos(psi) + dy * np.sin(psi)])
+
+
+def race_forces(model, raw, race=1, tilt_deg=0.0, lateral=False):
     """Resultant (x, z) [N] of the slice loads of one race (0 outer, 1 inner) on its ring, all
-    rollers, recomputed from the solved state.
+    rollers, recomputed from the solved state; (x, y, z) with ``lateral``.
 
     Independent of the solver's residual bookkeeping: normals from the contact kernel at the
     returned poses (imposed tilt of the inner ring included), loads from the returned line
     loads; the force of roller j on the ring is +q w n (n into the ring), summed as 3-D vectors
-    over the azimuths (x = radial component times cos(psi)).
+    over the azimuths (x = radial component times cos(psi), y = times sin(psi)).
     """
     from sim.physics.contact import Raceway, RingMotion, SliceContacts, slice_contact_meridian
 
@@ -24,7 +31,7 @@ def race_forces(model, raw, race=1, tilt_deg=0.0):
     a = g.arrays
     n = g.n_slices
     d, nrm, pts = np.empty(n), np.empty((n, 2)), np.empty((n, 2))
-    Fx = Fz = 0.0
+    Fx = Fy = Fz = 0.0
     for j in range(g.Z):
         psi = 2 * np.pi * j / g.Z
         if race == 0:
@@ -34,12 +41,13 @@ def race_forces(model, raw, race=1, tilt_deg=0.0):
         else:
             slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw,
                                    Raceway(a["race_kind"][1], a["race_par"][1]),
-                                   RingMotion(raw["ring"][1] * np.cos(psi), raw["ring"][0],
+                                   RingMotion(ring_in_meridian(raw, psi)[1], raw["ring"][0],
                                               np.radians(tilt_deg) * np.cos(psi)), SliceContacts(d, nrm, pts))
         load = raw["line_load"][j, race] * a["w"]
         Fx += np.sum(load * nrm[:, 0]) * np.cos(psi)
+        Fy += np.sum(load * nrm[:, 0]) * np.sin(psi)
         Fz += np.sum(load * nrm[:, 1])
-    return Fx, Fz
+    return (Fx, Fy, Fz) if lateral else (Fx, Fz)
 
 
 def roller_residuals(model, raw, op, ext=None, reported=False):
@@ -61,8 +69,8 @@ def roller_residuals(model, raw, op, ext=None, reported=False):
         state.pose[:] = raw["poses"][j]
         state.q[:] = raw["line_load"][j]
         state.active[:] = state.q > 0
-        roller_contact(raw["ring"], np.radians(op.tilt_deg) * np.cos(psi), np.cos(psi), model.bearing, model.elasticity,
-                       state)
+        roller_contact(ring_in_meridian(raw, psi), np.radians(op.tilt_deg) * np.cos(psi), 1.0, model.bearing,
+                       model.elasticity, state)
         f, Q = state.f, state.Q
         if Q[0] + Q[1] == 0.0 or (reported and raw["Q"][j].sum() + raw["Q_rib"][j] == 0.0):
             continue  # unloaded roller, held by the cage
@@ -142,7 +150,7 @@ def halfspace_contact_peak(model, raw, j, race, corner_radius, per_mm, across):
     corner = corner_radius - np.sqrt(np.maximum(corner_radius ** 2 - s ** 2, 0.0))
     rho = g.roller_radius(x_end) + np.where(s > 0.0, slope * s - corner, 0.0)
     psi = 2.0 * np.pi * j / g.Z
-    ring = RingMotion(0.0, 0.0, 0.0) if race == 0 else RingMotion(raw["ring"][1] * np.cos(psi), raw["ring"][0], 0.0)
+    ring = RingMotion(0.0, 0.0, 0.0) if race == 0 else RingMotion(ring_in_meridian(raw, psi)[1], raw["ring"][0], 0.0)
     d, nrm, pts = np.empty(nx), np.empty((nx, 2)), np.empty((nx, 2))
     slice_contact_meridian(x, rho, 1 - 2 * race, raw["poses"][j], b.alpha, b.Dpw,
                            Raceway(b.race_kind[race], b.race_par[race]), ring, SliceContacts(d, nrm, pts))
@@ -174,7 +182,7 @@ def contact_stiffness_and_difference(model, raw, j, cpsi, h=1e-7):
         roller_contact(ring, 0.0, cpsi, model.bearing, model.elasticity, state)
         return state.f.copy(), state.K.copy(), state.active.copy()
 
-    pose0, ring0 = raw["poses"][j].copy(), raw["ring"].copy()
+    pose0, ring0 = raw["poses"][j].copy(), raw["ring"][:2].copy()
     _, K, active = forces(pose0, ring0)
     th = pose0[2]
     steps = [np.array([np.cos(th), np.sin(th), 0.0, 0.0, 0.0]), np.array([-np.sin(th), np.cos(th), 0.0, 0.0, 0.0]),

@@ -241,13 +241,13 @@ class BearingModel:
         return np.where(q > 0.0, p0(np.maximum(q, 0.0), self.geometry.arrays["R_eq"][None, :, :], self.E_star), 0.0)
 
     def initial_ring(self, op: OperatingPoint):
-        """Start value of the inner-ring displacement (delta_a, delta_r) [mm]: the line-contact
+        """Start value of the inner-ring displacement (delta_a, delta_r, delta_y) [mm]: the line-contact
         approach of an equal share of max(Fa, Fr) along the roller axis normal (APPROACH_LOG_TERM)."""
         g = self.geometry
         Q = max(op.Fa, op.Fr) / (g.Z * np.sin(g.alpha))
         q = Q / (0.5 * g.Lwe)
         approach = 2.0 * 2.0 * q / (np.pi * self.E_star) * APPROACH_LOG_TERM
-        return np.array([approach / np.sin(g.alpha), 0.0])
+        return np.array([approach / np.sin(g.alpha), 0.0, 0.0])
 
     def solve(self, op: OperatingPoint, roller_loads=None, ring_loads=None, start=None):
         """Solve one case; returns a dict of plain arrays (kernel units) and the status.
@@ -267,15 +267,19 @@ class BearingModel:
             turns u' towards v' (increases the roller tilt theta).
             None means zeros. Loads on rollers the rings do not squeeze are ignored (the cage
             holds them). Unequal loads on rollers psi and -psi switch off the mirror symmetry
-            (all Z rollers are solved); the ring's balance along y is not part of the model.
-        ring_loads : array_like (Z, 2), optional
+            (all Z rollers are solved, and the ring's lateral displacement delta_y with them,
+            :func:`sim.solvers.quasi_static.solve_bearing`).
+        ring_loads : array_like (Z, 3), optional
             External load on the inner ring at each roller (the reaction of the friction of that
             roller's inner-raceway and rib contacts, :func:`sim.physics.friction.friction_loads`)
-            in the roller's meridian plane: [0] along e_r [N], [1] along e_z [N]. The ring balances
-            them with Fa and Fr: they are added to Fa (their sum along z) and Fr (their sum along x,
-            sum of [0] cos(psi_j), of either sign: under an imposed tilt with Fr = 0 the ring then
-            takes a small radial load; exactly 0 when all rollers carry the same, the axisymmetric
-            case). None means zeros.
+            in the roller's frame: [0] along e_r [N], [1] along e_t [N], [2] along e_z [N]. The ring
+            balances them with Fa and Fr: they are added to Fa (their sum along z), to Fr (their
+            sum along x, sum of [0] cos(psi_j) - [1] sin(psi_j), of either sign: under an imposed
+            tilt with Fr = 0 the ring then takes a small radial load) and make a lateral load Fy
+            (their sum along y, sum of [0] sin(psi_j) + [1] cos(psi_j): the tangential tractions of
+            the load zone add up along y), which the ring balances with its lateral displacement;
+            both sums are exactly 0 when all rollers carry the same (the axisymmetric case). None
+            means zeros.
         start : dict, optional
             A converged result of ``solve`` for the same ``op`` (other roller loads): its ring
             displacement, poses and slice loads are the start (a warm start of a few
@@ -285,8 +289,9 @@ class BearingModel:
         Returns
         -------
         dict
-            converged, iterations (ring), residual (axial, radial) [N], wall_time [s], ring
-            (delta_a, delta_r) [mm], poses (Z, 3) (xi [mm], eta [mm], theta [rad]),
+            converged, iterations (ring), residual (axial, radial, lateral) [N], wall_time [s], ring
+            (delta_a, delta_r, delta_y) [mm], ring_load (Fa, Fr, Fy) [N] as balanced (with the
+            ring_loads' sums), poses (Z, 3) (xi [mm], eta [mm], theta [rad]),
             line_load (Z, 2, N) [N/mm], pressure (Z, 2, N) [MPa], Q (Z, 2) [N], Q_rib (Z,) [N],
             rib_contact (Z, 4) (rib contact point (r, z) [mm] on the roller end and unit rib
             normal (r, z) into the rib in the roller's meridian plane; the rib load acts on the
@@ -309,14 +314,17 @@ class BearingModel:
             ext = np.ascontiguousarray(roller_loads, dtype=float)
             if ext.shape != (g.Z, 3) or not np.all(np.isfinite(ext)):
                 raise InputError(f"roller_loads must be a finite array of shape ({g.Z}, 3), got shape {ext.shape}")
-        Fa, Fr = op.Fa, op.Fr
+        Fa, Fr, Fy = op.Fa, op.Fr, 0.0
         if ring_loads is not None:
             ring_ext = np.asarray(ring_loads, dtype=float)
-            if ring_ext.shape != (g.Z, 2) or not np.all(np.isfinite(ring_ext)):
-                raise InputError(f"ring_loads must be a finite array of shape ({g.Z}, 2), got shape {ring_ext.shape}")
-            Fa += float(ring_ext[:, 1].sum())
-            if np.any(ring_ext[:, 0] != ring_ext[0, 0]):
-                Fr += float(ring_ext[:, 0] @ np.cos(2.0 * np.pi * np.arange(g.Z) / g.Z))
+            if ring_ext.shape != (g.Z, 3) or not np.all(np.isfinite(ring_ext)):
+                raise InputError(f"ring_loads must be a finite array of shape ({g.Z}, 3), got shape {ring_ext.shape}")
+            Fa += float(ring_ext[:, 2].sum())
+            if np.any(ring_ext[:, :2] != ring_ext[0, :2]):
+                psi = 2.0 * np.pi * np.arange(g.Z) / g.Z
+                c, s = np.cos(psi), np.sin(psi)
+                Fr += float(ring_ext[:, 0] @ c - ring_ext[:, 1] @ s)
+                Fy = float(ring_ext[:, 0] @ s + ring_ext[:, 1] @ c)
             if Fa <= 0.0:
                 raise InputError(f"the friction loads on the inner ring reverse the applied axial load: load.Fa = "
                                  f"{op.Fa} N -> {Fa} N (allowed: > 0)")
@@ -333,8 +341,8 @@ class BearingModel:
         totals = np.zeros(3, dtype=np.int64)  # roller iterations, contact evaluations, ring backtracks
         reports = []
 
-        def run(Fa, Fr, tilt_rad, ring, warm, problem=problem):
-            report = solve_bearing(Fa, Fr, tilt_rad, ext, problem, ring, rollers, warm)
+        def run(Fa, Fr, tilt_rad, ring, warm, problem=problem, Fy=Fy):
+            report = solve_bearing(Fa, Fr, Fy, tilt_rad, ext, problem, ring, rollers, warm)
             totals[:] += (report.roller_iterations, report.contact_evaluations, report.ring_backtracks)
             reports.append(report)
             return bool(report.converged)
@@ -360,7 +368,8 @@ class BearingModel:
             converged = run(Fa, Fr, tilt_rad, ring, False)
             iterations += reports[-1].iterations
             steps += 1
-        if not converged and s.continuation_steps > 1 and (Fr != 0.0 or tilt_rad != 0.0 or np.any(ext_case != 0.0)):
+        if not converged and s.continuation_steps > 1 and (Fr != 0.0 or Fy != 0.0 or tilt_rad != 0.0
+                                                           or np.any(ext_case != 0.0)):
             # continuation (Allgower & Georg 2003, Introduction to Numerical Continuation Methods,
             # ch. 1): from the axisymmetric case (Fa alone, solved with the ring under load
             # control) to the case along lam in [0, 1] (Fr, tilt and roller loads times lam), each
@@ -370,14 +379,14 @@ class BearingModel:
             lam, dlam = 0.0, CONTINUATION_FIRST_STEP
             ring = self.initial_ring(OperatingPoint(op.Fa, 0.0, op.speed_rpm, 0.0, op.oil_temperature))
             ext[:] = 0.0
-            ok = run(Fa, 0.0, 0.0, ring, False)
+            ok = run(Fa, 0.0, 0.0, ring, False, Fy=0.0)
             iterations += reports[-1].iterations
             steps += 1
             while ok and lam < 1.0 and steps < 2 * s.continuation_steps:
                 saved = (lam, ring.copy(), poses.copy(), q.copy(), active.copy())
                 trial = min(1.0, lam + dlam)
                 ext[:] = trial * ext_case
-                ok = run(Fa, trial * Fr, trial * tilt_rad, ring, True)
+                ok = run(Fa, trial * Fr, trial * tilt_rad, ring, True, Fy=trial * Fy)
                 iterations += reports[-1].iterations
                 steps += 1
                 if ok:
@@ -420,7 +429,8 @@ class BearingModel:
                            roller_classes=int(last.roller_classes),
                            unrested_rollers=max(unrested, int(last.unrested_rollers)))
         return dict(converged=bool(converged), iterations=int(iterations),
-                    residual=np.array([last.residual_axial, last.residual_radial]), wall_time=wall_time_s, ring=ring,
+                    residual=np.array([last.residual_axial, last.residual_radial, last.residual_lateral]),
+                    wall_time=wall_time_s, ring=ring, ring_load=np.array([Fa, Fr, Fy]),
                     poses=poses, line_load=q, pressure=pressure, Q=rollers.Q, Q_rib=rollers.Q_rib,
                     rib_contact=rollers.rib_contact, roller_loads=ext, frames=rollers.frames, free=rollers.free,
                     solver_info=solver_info)
@@ -446,13 +456,13 @@ def roller_shift_relative_to_inner_ring(g, xi, ring, tilt):
 
     xi is measured in the fixed (outer-ring) frame; the inner-ring material point at the
     nominal roller centre (Dpw/2, 0) moves by Rot(phi) P0 + Delta - P0 in each meridian plane
-    (phi = tilt cos(psi), Delta = (delta_r cos(psi), delta_a)); its component along the roller
+    (phi = tilt cos(psi), Delta = (delta_r cos(psi) + delta_y sin(psi), delta_a)); its component along the roller
     axis u = (sin(alpha), -cos(alpha)) is subtracted. Positive: towards the large end.
     """
     psi = 2.0 * np.pi * np.arange(g.Z) / g.Z
     phi = tilt * np.cos(psi)
     r0 = 0.5 * g.Dpw
-    dr = r0 * (np.cos(phi) - 1.0) + ring[1] * np.cos(psi)
+    dr = r0 * (np.cos(phi) - 1.0) + ring[1] * np.cos(psi) + ring[2] * np.sin(psi)
     dz = r0 * np.sin(phi) + ring[0]
     return xi - (dr * np.sin(g.alpha) - dz * np.cos(g.alpha))
 

@@ -73,6 +73,7 @@ def body_and_state(model, friction, op, dyn, raw, kin):
     o_ring = Z * NS
     y0[o_ring] = raw["ring"][0]
     y0[o_ring + 1] = raw["ring"][1]
+    y0[o_ring + 2] = raw["ring"][2]
     y0[o_ring + NRING + 1] = wc
     return body, y0
 
@@ -204,7 +205,7 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
         "Q_rib": rol[:, :, RO_QRIB],
         "pocket_force": rol[:, :, RO_FP],
         "cage_speed": y[:, o_cage + 1] * RPM_PER_RAD_S,
-        "ring_displacement": y[:, o_ring:o_ring + 2],
+        "ring_displacement": y[:, o_ring:o_ring + 3],
         "torque": tot[:, TO_TOUT],
         "drive_torque": tot[:, TO_TIN],
         "torque_component": tot[:, TO_P0:TO_DAMP] / body.wi,
@@ -222,10 +223,10 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
     state = yl[:o_ring].reshape(Z, NS)[order]
     q = dcase.problem.case.bearing.q[order]
     raw = dict(converged=bool(integ.steady), iterations=int(integ.windows), wall_time=wall_time,
-               ring=yl[o_ring:o_ring + 2].copy(), poses=state[:, [XI, ETA, THETA]].copy(), line_load=q,
+               ring=yl[o_ring:o_ring + 3].copy(), poses=state[:, [XI, ETA, THETA]].copy(), line_load=q,
                pressure=model.hertz_pressure(q), Q=rl[:, [RO_QO, RO_QI]], Q_rib=rl[:, RO_QRIB],
                free=dcase.problem.case.bearing.free[order],
-               residual=np.zeros(2),
+               residual=np.zeros(3),
                solver_info=dict(unrested_rollers=0))   # every roller runs on its own (no rest to fail)
     summary = case_results(model, op, raw, output_cfg)
     if not integ.steady:

@@ -129,9 +129,10 @@ exactly the rates' share of the slip power F_t s + F_l s_l whose negative the lo
 its integration tolerance, tests/dynamic/test_ladder.py). The inner-ring contacts' tractions react
 on the inner ring (EV_RING_R, EV_RING_T, EV_RING_Z), whose translation V is in the slip; their power
 on V, -F_t V_t - F_l V.a, closes the same balance. Both solvers apply that reaction: the
-quasi-static ring balance its e_r, e_z parts (:func:`friction_loads`, with the friction loads on the
-rollers; the axial sum is 1.0 kN of 35 kN for the skewed TRB 31313 at the pinion case), the dynamic
-solver all three on the ring's translation, whose velocity it passes as V.
+quasi-static ring balance (:func:`friction_loads`, with the friction loads on the rollers; the axial
+sum is 1.0 kN of 35 kN for the skewed TRB 31313 at the pinion case; the e_t parts of the load zone add
+up to a lateral force, which the ring's lateral displacement balances), the dynamic solver on the
+ring's translation, whose velocity it passes as V.
 The rib takes the same rates on its 2-D slip (s, s_b), s_b along b = n_rib x e_t in the meridian plane.
 The entrainment speed of the transit time 2 b / u is the mean speed of the surfaces relative to the
 contact point (Reynolds' equation in the frame of a moving contact, as for a cam and follower): the
@@ -184,9 +185,9 @@ EV_RING_R, EV_RING_T, EV_RING_Z = EV_PSKEW + 1, EV_PSKEW + 2, EV_PSKEW + 3
 NEV = EV_RING_Z + 1
 # FRICTION_LOADS, friction loads of a roller's contacts in the quasi-static balance (:func:`friction_loads`): on the
 # roller along u', v' [N] and about u' x v' [N mm] (BearingModel.solve's roller_loads), then on the
-# inner ring along e_r, e_z of the roller's meridian plane [N] (its ring_loads)
-FL_U, FL_V, FL_W, FL_RING_R, FL_RING_Z = range(5)
-NFL = 5
+# inner ring along e_r, e_t, e_z of the roller's frame [N] (its ring_loads)
+FL_U, FL_V, FL_W, FL_RING_R, FL_RING_T, FL_RING_Z = range(6)
+NFL = 6
 
 # Rates of a roller and of the inner ring that move the contact surfaces besides the spins (the
 # dynamic solver's state; all zero in the quasi-static solution, :data:`NO_RATES`), read by
@@ -748,13 +749,13 @@ def friction_loads(ev, F_pocket, out):
     it returned, written to ``out`` (NFL,): on the roller, the quasi-static roller loads (along u',
     along v' [N], about u' x v' [N mm]): the pocket force along v' (module docstring) and, with
     skew, the lateral raceway and rib tractions; on the inner ring, the reaction of its raceway
-    and rib tractions along e_r and e_z [N] (its e_t part sums to no x-force over the mirror-
-    symmetric rollers of the quasi-static solution and has no place in its ring balance, which
-    has no y; module docstring, "Rates")."""
+    and rib tractions along e_r, e_t and e_z [N] (module docstring, "Rates"; over the load zone
+    the e_t parts add up to a lateral force on the ring, sim.solvers.quasi_static.solve_bearing)."""
     out[FL_U] = ev[EV_FU]
     out[FL_V] = F_pocket + ev[EV_FV]
     out[FL_W] = ev[EV_MW]
     out[FL_RING_R] = ev[EV_RING_R]
+    out[FL_RING_T] = ev[EV_RING_T]
     out[FL_RING_Z] = ev[EV_RING_Z]
 
 

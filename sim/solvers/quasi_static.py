@@ -1,7 +1,10 @@
 """Quasi-static load distribution (MODEL.md 4): unknowns, residuals, Jacobians, Newton.
 
-Unknowns. Inner ring: axial displacement ``delta_a`` along +z (the direction of Fa) and
-radial displacement ``delta_r`` along +x (the direction of Fr); its tilt is imposed. Roller j
+Unknowns. Inner ring: axial displacement ``delta_a`` along +z (the direction of Fa), radial
+displacement ``delta_r`` along +x (the direction of Fr) and, where the load case is not
+mirror-symmetric about the x-z plane (friction loads: the tangential tractions of the load zone
+add up along y), lateral displacement ``delta_y`` along +y (:func:`solve_bearing`); its tilt is
+imposed. Roller j
 at azimuth psi_j = 2 pi j / Z, in its meridian plane: shift ``xi`` along its nominal axis u
 (towards the large end: the roller axial displacement of DATA.md), radial shift ``eta`` along
 the nominal v and tilt ``theta`` (positive turning u towards v). The outer ring is fixed.
@@ -117,13 +120,13 @@ QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", 
 RollerSet = namedtuple("RollerSet", ["poses", "q", "active", "Q", "Q_rib", "rib_contact", "frames", "free"])
 
 # What solve_bearing reports: converged; iterations (ring Newton iterations; axisymmetric case:
-# Newton iterations of the load-controlled roller); residual_axial, residual_radial: force
+# Newton iterations of the load-controlled roller); residual_axial, residual_radial, residual_lateral: force
 # residual on the inner ring [N]; unconverged_classes and loaded_classes: roller classes without
 # equilibrium and loaded ones; roller_iterations (Newton), contact_evaluations (roller_contact
 # calls), ring_backtracks; roller_classes: rollers solved (sim.solvers.symmetry); unrested_rollers:
 # rollers outside the load zone released although problem.rest (left unloaded).
 SolveReport = namedtuple("SolveReport", ["converged", "iterations", "residual_axial", "residual_radial",
-                                         "unconverged_classes", "loaded_classes", "roller_iterations",
+                                         "residual_lateral", "unconverged_classes", "loaded_classes", "roller_iterations",
                                          "contact_evaluations", "ring_backtracks", "roller_classes",
                                          "unrested_rollers"])
 
@@ -211,6 +214,27 @@ def _kinematic_pose(ring, phi, cpsi, bearing, pose):
     pose[0] = du if bearing.has_rib else 0.5 * du
     pose[1] = 0.5 * dv
     pose[2] = 0.5 * phi
+
+
+@internal_kernel
+def _ring_projection(j, Z, lateral, proj):
+    """Roller j's azimuth psi_j = 2 pi j / Z as the projection of its meridian plane's (axial,
+    radial) on the ring's (axial, x, y), written to ``proj``: (1, cos(psi_j), sin(psi_j)), the
+    last 0 where the ring has no lateral displacement (:func:`solve_bearing`); returns cos(psi_j)."""
+    psi = 2.0 * np.pi * j / Z
+    proj[0] = 1.0
+    proj[1] = np.cos(psi)
+    proj[2] = np.sin(psi) if lateral else 0.0
+    return proj[1]
+
+
+@internal_kernel
+def _meridian(ring, proj, out):
+    """A ring displacement (or step) (delta_a, delta_r, delta_y) [mm] seen in the meridian plane of
+    the roller of projection ``proj`` (:func:`_ring_projection`): (delta_a, delta_r cos(psi) +
+    delta_y sin(psi)), written to ``out``."""
+    out[0] = ring[0]
+    out[1] = ring[1] * proj[1] + ring[2] * proj[2]
 
 
 @internal_kernel
@@ -716,26 +740,31 @@ def _onto_the_rest(ring, phi, cpsi, bearing, elasticity, state):
 
 
 @kernel
-def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
-    """Inner-ring equilibrium under Fa, Fr and an imposed tilt (Newton on the condensed stiffness).
+def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
+    """Inner-ring equilibrium under Fa, Fr, Fy and an imposed tilt (Newton on the condensed stiffness).
 
     Symmetry (:func:`sim.solvers.symmetry.symmetry_classes`): roller j and Z - j are mirror
-    images (same cos(psi), same phi) when their external loads are equal, so only Z // 2 + 1
-    azimuth classes are solved; with no radial load, no tilt and equal external loads on every
-    roller, one roller is solved for all.
+    images (same cos(psi), same phi) when their external loads are equal and Fy = 0, so only
+    Z // 2 + 1 azimuth classes are solved and the ring's lateral displacement delta_y is 0; with
+    no radial load, no tilt and equal external loads on every roller, one roller is solved for all.
+    Otherwise every roller is solved and delta_y is a third ring unknown: roller j sees the ring's
+    radial displacement delta_r cos(psi_j) + delta_y sin(psi_j) in its meridian plane, and the
+    radial force f_r of its contacts on the ring adds f_r (cos(psi_j), sin(psi_j)) to the ring's
+    x and y balance (the condensed stiffness and the roller tangents projected the same way).
 
     Parameters
     ----------
-    Fa, Fr : float
-        Axial load along +z and radial load along +x on the inner ring [N].
+    Fa, Fr, Fy : float
+        Axial load along +z, radial load along +x and lateral load along +y on the inner ring [N]
+        (Fy: the friction loads' share, sim.api.friction_model.coupled_solution).
     tilt : float
         Imposed inner-ring tilt about the y axis [rad].
     ext : ndarray (Z, 3)
         External load per roller, [along u' towards the large end N, along v' N, about u' x v'
         N mm] (:func:`solve_roller`).
     problem : QuasiStaticProblem
-    ring0 : ndarray (2,)
-        Start value of (delta_a, delta_r) [mm], not both zero: its size is the ring's length
+    ring0 : ndarray (3,)
+        Start value of (delta_a, delta_r, delta_y) [mm], the first two not both zero: its size is the ring's length
         scale (BearingModel.initial_ring: the Hertz approach); the solution is written back.
     rollers : RollerSet
         Poses, q and active are a warm start in when ``warm``; everything is written. The
@@ -766,9 +795,16 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     roller_tol_final = tol * settings.roller_tolerance_ratio
     Lscale = bearing.Lwe
     # azimuth classes
-    nz, mult, source = symmetry_classes(Z, Fr, tilt, ext)
+    nz, mult, source = symmetry_classes(Z, Fr, Fy, tilt, ext)
     axisym = nz == 1
+    lateral = nz == Z                       # delta_y free (docstring)
+    nr = 3 if lateral else 2                # ring unknowns
     ring = ring0.copy()
+    if not lateral:
+        ring[2] = 0.0
+    ring_j = np.empty(2)                    # (delta_a, radial displacement in roller j's meridian plane)
+    ring_prev = np.empty(2)                 # ... in the meridian plane of the roller solved before it
+    step_j = np.empty(2)                    # a ring step seen in roller j's meridian plane
     # length scale of the ring: the start estimate (an approach), or the current displacement
     ring_scale = max(abs(ring0[0]), abs(ring0[1]))
     # contact state of the roller being solved (its pose, slice loads and frames: views into rollers)
@@ -811,7 +847,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     have_acc = False
     err_acc = np.inf
     err_prev = np.inf
-    step = np.zeros(2)
+    step = np.zeros(3)
     t_ring = 1.0
     backtracks = 0
     n_backtracks = 0
@@ -820,10 +856,13 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     roller_tol = max(roller_tol_final, 0.5 * forcing * np.sin(alpha))
     converged = False
     it_ring = 0
-    Ffail = np.zeros(2)  # ring forces of rollers without equilibrium (inexact states)
-    Fres = np.zeros(2)   # ring residual with the rollers' first-order correction (Newton)
-    Ftrue = np.zeros(2)  # ring residual of the rollers as they are
-    Kc = np.zeros((2, 2))
+    Ffail = np.zeros(3)  # ring forces (axial, x, y) of rollers without equilibrium (inexact states)
+    Fres = np.zeros(3)   # ring residual with the rollers' first-order correction (Newton)
+    Ftrue = np.zeros(3)  # ring residual of the rollers as they are
+    Kc = np.zeros((3, 3))
+    Kl = np.zeros((2, 2))  # a roller's condensed stiffness in its meridian plane (axial, radial)
+    fl = np.zeros(2)     # its ring forces with its first-order correction
+    proj = np.zeros(3)   # its (axial, radial) -> (axial, x, y): 1, cos(psi), sin(psi) (0 without delta_y)
     kin = np.empty(3)
     kin_prev = np.empty(3)
     roller_its = 0
@@ -832,6 +871,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     nload = 0
     residual_axial = 0.0
     residual_radial = 0.0
+    residual_lateral = 0.0
     Fa_share = 0.0
     if axisym:
         # every roller alike: one roller, with the ring's axial displacement solved with it under
@@ -843,8 +883,10 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     for it_ring in range(max_iter):
         Fres[0] = Fa
         Fres[1] = Fr
+        Fres[2] = Fy
         Ftrue[0] = Fa
         Ftrue[1] = Fr
+        Ftrue[2] = Fy
         unrested.fill(False)
         Kc.fill(0.0)
         nbad = 0
@@ -853,16 +895,18 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
         fail_sum = 0.0
         Ffail.fill(0.0)
         for j in range(nz):
-            psi = 2.0 * np.pi * j / Z
-            cpsi = np.cos(psi)
+            cpsi = _ring_projection(j, Z, lateral, proj)
             phi = tilt * cpsi
+            _meridian(ring, proj, ring_j)
             if status[j] != 1 and status[j] != 3:
                 # no valid state: rigid kinematic pose, plus the deviation of the neighbour solved
                 # just before (warm start of its slice loads too)
-                _kinematic_pose(ring, phi, cpsi, bearing, kin)
+                _kinematic_pose(ring_j, phi, 1.0, bearing, kin)
                 if j > 0 and status[j - 1] == 1:
-                    cprev = np.cos(2.0 * np.pi * (j - 1) / Z)
-                    _kinematic_pose(ring, tilt * cprev, cprev, bearing, kin_prev)
+                    cprev = _ring_projection(j - 1, Z, lateral, proj)
+                    _meridian(ring, proj, ring_prev)
+                    _kinematic_pose(ring_prev, tilt * cprev, 1.0, bearing, kin_prev)
+                    _ring_projection(j, Z, lateral, proj)
                     for a in range(3):
                         poses[j, a] = kin[a] + poses[j - 1, a] - kin_prev[a]
                     copy_matrix(q[j], q[j - 1])
@@ -875,7 +919,9 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
             state = RollerContact(poses[j], q[j], active[j], f, K, Qc, depth, G, dpen, ribc,
                                   ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j],
                                                 frames.Xrib[j]), free[j])
-            st, its, nev = solve_roller(ring, phi, cpsi, ext[j], problem, roller_tol, control, state, work)
+            st, its, nev = solve_roller(ring_j, phi, 1.0, ext[j], problem, roller_tol, control, state, work)
+            if axisym:
+                ring[0] = ring_j[0]             # solved with the roller under load control
             roller_its += its
             roller_evals += nev
             if st == 2 and problem.rest:
@@ -893,8 +939,9 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                 if depth[0] + depth[1] > 0.0:
                     # kept as an inexact state if the ring residual allows (below)
                     fail_sum += mult[j] * Rq[3]
-                    for a in range(2):
-                        Ffail[a] += mult[j] * f[3 + a]
+                    Ffail[0] += mult[j] * f[3]
+                    for a in range(1, 3):
+                        Ffail[a] += mult[j] * f[4] * proj[a]
             if st != 1:
                 continue
             nload += 1
@@ -912,31 +959,38 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                 for a in range(3):
                     zc[j, a] = xcol[a]
             for a in range(2):
-                Ftrue[a] += mult[j] * f[3 + a]
-                corr = f[3 + a]
+                fl[a] = f[3 + a]
                 for c in range(3):
-                    corr -= K[3 + a, c] * zc[j, c]
-                Fres[a] += mult[j] * corr
+                    fl[a] -= K[3 + a, c] * zc[j, c]
                 for b in range(2):
                     s = K[3 + a, 3 + b]
                     for c in range(3):
                         s -= K[3 + a, c] * X[j, c, b]
-                    Kc[a, b] += mult[j] * s
+                    Kl[a, b] = s
+            # projected on the ring's (axial, x, y): T^T f and T^T K T, T = [[1, 0, 0], [0, cos, sin]]
+            for A in range(3):
+                ta = proj[A]
+                ia = 0 if A == 0 else 1
+                Ftrue[A] += mult[j] * ta * f[3 + ia]
+                Fres[A] += mult[j] * ta * fl[ia]
+                for B in range(3):
+                    Kc[A, B] += mult[j] * ta * proj[B] * Kl[ia, 0 if B == 0 else 1]
         if axisym:
             # the roller solve balanced the ring's axial load too (load control); delta_r = 0 by
             # symmetry, the radial sum of one roller class is not a residual
             converged = nbad == 0 and nload == 1
             residual_axial = Ftrue[0]
             residual_radial = 0.0
+            residual_lateral = 0.0
             it_ring = max(roller_its - 1, 0)  # reported: the roller's Newton iterations
             break
-        err = max(abs(Fres[0]), abs(Fres[1]))
+        err = max(abs(Fres[0]), abs(Fres[1]), abs(Fres[2]))
         n_inexact = 0
         if nbad > 0 and roller_tol > roller_tol_final:
             # rollers without equilibrium yet (lightly loaded, far from the solution) are kept as
             # they are while their residuals stay below forcing x the ring residual, like the
             # inexact rollers (they enter the ring residual, not its stiffness)
-            err_with = max(abs(Fres[0] + Ffail[0]), abs(Fres[1] + Ffail[1]))
+            err_with = max(abs(Fres[0] + Ffail[0]), abs(Fres[1] + Ffail[1]), abs(Fres[2] + Ffail[2]))
             if fail_sum <= forcing * err_with:
                 for j in range(nz):
                     if status[j] == 0 and rollers.Q[j, 0] + rollers.Q[j, 1] > 0.0:
@@ -944,10 +998,9 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                         n_inexact += 1
                 if n_inexact == nbad:
                     nbad = 0
-                    Fres[0] += Ffail[0]
-                    Fres[1] += Ffail[1]
-                    Ftrue[0] += Ffail[0]
-                    Ftrue[1] += Ffail[1]
+                    for a in range(3):
+                        Fres[a] += Ffail[a]
+                        Ftrue[a] += Ffail[a]
                     err = err_with
                 else:
                     for j in range(nz):
@@ -956,8 +1009,10 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                     n_inexact = 0
         residual_axial = Ftrue[0]
         residual_radial = Ftrue[1]
+        residual_lateral = Ftrue[2]
         if nbad == 0 and err <= tol * Fscale:
-            if roller_tol <= roller_tol_final and n_inexact == 0 and max(abs(Ftrue[0]), abs(Ftrue[1])) <= tol * Fscale:
+            if (roller_tol <= roller_tol_final and n_inexact == 0
+                    and max(abs(Ftrue[0]), abs(Ftrue[1]), abs(Ftrue[2])) <= tol * Fscale):
                 converged = True
                 break
             if roller_tol > roller_tol_final:
@@ -976,7 +1031,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
             backtracks += 1
             n_backtracks += 1
             t_ring *= 0.5
-            for a in range(2):
+            for a in range(nr):
                 ring[a] = ring_acc[a] + t_ring * step[a]
             for j in range(nz):
                 status[j] = st_acc[j]
@@ -985,10 +1040,12 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
                 for a in range(3):
                     poses[j, a] = pose_acc[j, a]
                 if st_acc[j] == 1:
+                    _ring_projection(j, Z, lateral, proj)
+                    _meridian(step, proj, step_j)
                     _local_to_pose(poses[j],
-                                   z_acc[j, 0] - t_ring * (X_acc[j, 0, 0] * step[0] + X_acc[j, 0, 1] * step[1]),
-                                   z_acc[j, 1] - t_ring * (X_acc[j, 1, 0] * step[0] + X_acc[j, 1, 1] * step[1]),
-                                   z_acc[j, 2] - t_ring * (X_acc[j, 2, 0] * step[0] + X_acc[j, 2, 1] * step[1]))
+                                   z_acc[j, 0] - t_ring * (X_acc[j, 0, 0] * step_j[0] + X_acc[j, 0, 1] * step_j[1]),
+                                   z_acc[j, 1] - t_ring * (X_acc[j, 1, 0] * step_j[0] + X_acc[j, 1, 1] * step_j[1]),
+                                   z_acc[j, 2] - t_ring * (X_acc[j, 2, 0] * step_j[0] + X_acc[j, 2, 1] * step_j[1]))
             continue
         if nbad > 0:
             break  # a roller equilibrium failed at the start value
@@ -1004,8 +1061,7 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
             copy_matrix(act_acc[j], active[j])
             copy_matrix(X_acc[j], X[j])
             copy_vector(z_acc[j], zc[j])
-        ring_acc[0] = ring[0]
-        ring_acc[1] = ring[1]
+        copy_vector(ring_acc, ring)
         # rollers for the next ring iterate: forcing x the ring residual expected there, from
         # quadratic convergence err_next ~ err^3 / err_prev^2 (Eisenstat & Walker 1996, SIAM J.
         # Sci. Comput. 17(1), choice 2, with the observed rate), never above the current one
@@ -1021,35 +1077,38 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
         det = Kc[0, 0] * Kc[1, 1] - Kc[0, 1] * Kc[1, 0]
         if nload < 2 or abs(det) <= REG * abs(Kc[0, 0] * Kc[1, 1]) or Kc[0, 0] * Kc[1, 1] == 0.0:
             push = True
+        elif lateral:
+            push = Kc[2, 2] <= REG * max(Kc[0, 0], Kc[1, 1]) or not _solve_small(Kc, Fres, step, 3)
         else:
             step[0] = (Kc[1, 1] * Fres[0] - Kc[0, 1] * Fres[1]) / det
             step[1] = (-Kc[1, 0] * Fres[0] + Kc[0, 0] * Fres[1]) / det
         if push:
             step[0] = max(abs(ring[0]), ring_scale)
             step[1] = 0.0
+            step[2] = 0.0
             if ring[0] + step[0] > Lscale:
                 break  # moved by a roller length and still nothing carries the load
         else:
             # limit the step to a fraction of the current ring displacement (contacts stiffen)
-            lim = ring_frac * max(abs(ring[0]), abs(ring[1]), ring_scale)
+            lim = ring_frac * max(abs(ring[0]), abs(ring[1]), abs(ring[2]), ring_scale)
             sc = 1.0
-            if abs(step[0]) > lim:
-                sc = lim / abs(step[0])
-            if abs(step[1]) > lim:
-                sc = min(sc, lim / abs(step[1]))
-            step[0] *= sc
-            step[1] *= sc
-        ring[0] += step[0]
-        ring[1] += step[1]
+            for a in range(nr):
+                if abs(step[a]) > lim:
+                    sc = min(sc, lim / abs(step[a]))
+            for a in range(nr):
+                step[a] *= sc
+        for a in range(nr):
+            ring[a] += step[a]
         # predictor: each roller takes its Newton correction and follows the ring along its tangent
         for j in range(nz):
             if status[j] == 1:
-                _local_to_pose(poses[j], zc[j, 0] - (X[j, 0, 0] * step[0] + X[j, 0, 1] * step[1]),
-                               zc[j, 1] - (X[j, 1, 0] * step[0] + X[j, 1, 1] * step[1]),
-                               zc[j, 2] - (X[j, 2, 0] * step[0] + X[j, 2, 1] * step[1]))
+                _ring_projection(j, Z, lateral, proj)
+                _meridian(step, proj, step_j)
+                _local_to_pose(poses[j], zc[j, 0] - (X[j, 0, 0] * step_j[0] + X[j, 0, 1] * step_j[1]),
+                               zc[j, 1] - (X[j, 1, 0] * step_j[0] + X[j, 1, 1] * step_j[1]),
+                               zc[j, 2] - (X[j, 2, 0] * step_j[0] + X[j, 2, 1] * step_j[1]))
     # results of the last state
-    ring0[0] = ring[0]
-    ring0[1] = ring[1]
+    copy_vector(ring0, ring)
     # fill the rollers of the other azimuths from their classes
     for j in range(Z):
         src = source[j]
@@ -1079,5 +1138,5 @@ def solve_bearing(Fa, Fr, tilt, ext, problem, ring0, rollers, warm):
     for j in range(nz):
         if unrested[j]:
             n_unrested += int(mult[j])
-    return SolveReport(converged, it_ring + 1, residual_axial, residual_radial, nbad, nload, roller_its, roller_evals,
+    return SolveReport(converged, it_ring + 1, residual_axial, residual_radial, residual_lateral, nbad, nload, roller_its, roller_evals,
                        n_backtracks, nz, n_unrested)

@@ -1,11 +1,12 @@
 """Azimuth symmetry of a load case: which rollers one solution stands for.
 
-The inner ring carries Fa along +z and Fr along +x and is tilted about the y axis, so the load
-case is symmetric about the x-z plane: roller j at psi_j = 2 pi j / Z and roller Z - j at
--psi_j see the same ring displacement in their meridian planes (the same cos(psi), the same
-rotation phi = tilt cos(psi)). They are mirror images when their external roller loads are
-equal. Without radial load and tilt, and with equal external loads on every roller, all rollers
-are alike (axisymmetric case). The quasi-static solver and the friction evaluation reduce their
+The inner ring carries Fa along +z and Fr along +x and is tilted about the y axis; with no load
+along y (Fy, the friction loads' share, sim.api.friction_model.coupled_solution) the load case is
+symmetric about the x-z plane: roller j at psi_j = 2 pi j / Z and roller Z - j at -psi_j see the
+same ring displacement in their meridian planes (the same cos(psi), the same rotation
+phi = tilt cos(psi); the ring's lateral displacement is 0). They are mirror images when their
+external roller loads are equal. Without radial and lateral load and tilt, and with equal external
+loads on every roller, all rollers are alike (axisymmetric case). The quasi-static solver and the friction evaluation reduce their
 roller loops by the same classes.
 """
 import numpy as np
@@ -14,15 +15,15 @@ from sim._math.jit import kernel
 
 
 @kernel
-def symmetry_classes(Z, Fr, tilt, roller_loads):
+def symmetry_classes(Z, Fr, Fy, tilt, roller_loads):
     """Roller classes of a load case (module docstring).
 
     Parameters
     ----------
     Z : int
         Number of rollers (>= 3).
-    Fr : float
-        Radial load on the inner ring [N].
+    Fr, Fy : float
+        Radial load (along x) and lateral load (along y) on the inner ring [N].
     tilt : float
         Imposed inner-ring tilt [rad].
     roller_loads : ndarray (Z, m)
@@ -42,7 +43,7 @@ def symmetry_classes(Z, Fr, tilt, roller_loads):
         Representative of every roller: 0 (axisymmetric); Z - j for j > Z // 2 (mirror); j
         otherwise.
     """
-    mirror = True
+    mirror = Fy == 0.0
     equal = True
     for j in range(Z):
         for a in range(roller_loads.shape[1]):
@@ -50,7 +51,7 @@ def symmetry_classes(Z, Fr, tilt, roller_loads):
                 mirror = False
             if roller_loads[j, a] != roller_loads[0, a]:
                 equal = False
-    axisymmetric = Fr == 0.0 and tilt == 0.0 and equal
+    axisymmetric = Fr == 0.0 and Fy == 0.0 and tilt == 0.0 and equal
     weight = np.zeros(Z)
     source = np.empty(Z, dtype=np.int64)
     if axisymmetric:

@@ -44,22 +44,26 @@ def test_symmetry_classes(Z):
     """sim.solvers.symmetry: the classes stand for every roller once (weights sum to Z, each
     roller's representative carries its weight), roller Z - j mirrors roller j also under tilt
     (phi = tilt cos(psi) is even in psi), one roller stands for all only without Fr, tilt and
-    unequal roller loads, and unequal loads on psi and -psi leave every roller its own class."""
+    unequal roller loads, and unequal loads on psi and -psi or a lateral load Fy (which turns the
+    ring out of the x-z plane) leave every roller its own class."""
     from sim.solvers.symmetry import symmetry_classes
 
     zero = np.zeros((Z, 3))
-    n, weight, source = symmetry_classes(Z, 0.0, 0.0, zero)
+    n, weight, source = symmetry_classes(Z, 0.0, 0.0, 0.0, zero)
     assert n == 1 and weight.sum() == Z and np.all(source == 0)
     for Fr, tilt in ((2000.0, 0.0), (0.0, 0.004), (2000.0, 0.004)):
-        n, weight, source = symmetry_classes(Z, Fr, tilt, zero)
+        n, weight, source = symmetry_classes(Z, Fr, 0.0, tilt, zero)
         assert n == Z // 2 + 1 and weight.sum() == Z
         j = np.arange(Z)
         np.testing.assert_array_equal(source, np.where(j < n, j, Z - j))
         np.testing.assert_array_equal(np.bincount(source, minlength=Z), weight)
     loads = np.ones((Z, 3))
     loads[1, 0] = 2.0  # roller 1 unlike roller Z - 1
-    n, weight, source = symmetry_classes(Z, 0.0, 0.0, loads)
+    n, weight, source = symmetry_classes(Z, 0.0, 0.0, 0.0, loads)
     assert n == Z and np.all(weight == 1.0) and np.all(source == np.arange(Z))
+    for Fr in (0.0, 2000.0):
+        n, weight, source = symmetry_classes(Z, Fr, 1.0, 0.0, zero)
+        assert n == Z and np.all(weight == 1.0) and np.all(source == np.arange(Z))
 
 
 def test_mirror_reduction_equals_the_full_solve(model_for):
@@ -115,19 +119,58 @@ def test_inner_ring_balances_the_reaction_of_its_contacts_tractions(model_for, o
     op = operating_points(resolved(cfg)["load"])[0]
     raw, fr = coupled_solution(model, build_friction(cfg, model), op)
     assert raw["converged"] and fr["friction_converged"]
-    Fx, Fz = race_forces(model, raw, 1, op.tilt_deg)
-    psi = 2.0 * np.pi * np.arange(model.geometry.Z) / model.geometry.Z
-    rib = raw["Q_rib"][:, None] * raw["rib_contact"][:, 2:4]         # +Q_rib n on the ring (n into the rib)
-    Fx += rib[:, 0] @ np.cos(psi)
-    Fz += rib[:, 1].sum()
-    Rx = fr["ring_loads"][:, 0] @ np.cos(psi)
-    Rz = fr["ring_loads"][:, 1].sum()
+    (Fx, Fy, Fz), (Rx, Ry, Rz) = inner_ring_forces(model, raw, fr, op)
     print(f"Fa {op.Fa:.0f} N: normal {Fz:.2f}, tractions {Rz:.2f}, residual {op.Fa + Fz + Rz:.3e} N; "
-          f"Fr {op.Fr:.0f} N: residual {op.Fr + Fx + Rx:.3e} N")
+          f"Fr {op.Fr:.0f} N: residual {op.Fr + Fx + Rx:.3e} N; lateral: tractions {Ry:.2f}, residual {Fy + Ry:.3e} N")
     assert abs(Rz) > 5e-3 * op.Fa
     assert abs(op.Fa + Fz + Rz) < 1e-4 * op.Fa
     assert abs(op.Fr + Fx + Rx) < 1e-4 * max(op.Fa, op.Fr)
     assert fr["coupling_converged"]
+
+
+def inner_ring_forces(model, raw, fr, op):
+    """The forces on the inner ring of a coupled solution, recomputed from its state: those of the
+    raceway slices' normal loads (tests.helpers.race_forces) and the rib loads, and the reaction of
+    the friction evaluation (ring_loads along e_r, e_t, e_z of each roller), each (x, y, z) [N]."""
+    Fx, Fy, Fz = race_forces(model, raw, 1, op.tilt_deg, lateral=True)
+    psi = 2.0 * np.pi * np.arange(model.geometry.Z) / model.geometry.Z
+    c, s = np.cos(psi), np.sin(psi)
+    rib = raw["Q_rib"][:, None] * raw["rib_contact"][:, 2:4]         # +Q_rib n on the ring (n into the rib)
+    r, t, z = fr["ring_loads"].T
+    return ((Fx + rib[:, 0] @ c, Fy + rib[:, 0] @ s, Fz + rib[:, 1].sum()),
+            (r @ c - t @ s, r @ s + t @ c, z.sum()))
+
+
+@pytest.mark.parametrize("overrides", [
+    ["bearing=tsrb_pinion_alpha", "lubricant=pinion_oil", "load.Fa=7160", "load.Fr=6410", "load.speed=3910",
+     "load.oil_temperature=52"],
+    ["bearing=trb_32208", "load.Fa=4500", "load.Fr=3000", "load.speed=2000"],
+    ["bearing=tsrb_prototype", "load.Fa=1500", "load.Fr=2000", "load.speed=2000"],
+], ids=["tsrb_pinion_alpha_fast", "trb_32208_combined", "tsrb_prototype_combined"])
+def test_inner_ring_balances_the_lateral_sum_of_its_tractions(model_for, overrides):
+    """Under a radial load the tangential tractions of the inner raceway (and the TRB's rib) add up
+    along y over the load zone (sim.api.friction_model.coupled_solution): a lateral force on the
+    ring, which its lateral displacement delta_y balances (sim.solvers.quasi_static.solve_bearing;
+    every roller solved). The ring's y-balance recomputed from the solved state, normal loads +
+    the reaction's y-sum = 0 within 1e-4 of the load (the coupling tolerance summed over Z rollers,
+    as above) and within 1 % of the reaction (measured: 30 N of 6.4 kN for the fast pinion TSRB, its
+    rollers on the pocket walls, residual 4e-4 N; 1.1 and 4.4 N for the others, residuals 3e-5 and
+    5e-4 N), so the balance fails without delta_y; delta_y has the reaction's sign."""
+    from sim.api.friction_model import coupled_solution
+    from sim.api.cases import operating_points
+    from sim.api.simulation import build_friction, resolved
+
+    model, cfg = model_for(*overrides)
+    op = operating_points(resolved(cfg)["load"])[0]
+    raw, fr = coupled_solution(model, build_friction(cfg, model), op)
+    assert raw["converged"] and fr["friction_converged"] and fr["coupling_converged"]
+    (Fx, Fy, Fz), (Rx, Ry, Rz) = inner_ring_forces(model, raw, fr, op)
+    scale = max(op.Fa, op.Fr)
+    print(f"lateral: tractions {Ry:.3f} N, normal loads {Fy:.3f} N, residual {Fy + Ry:.2e} N; delta_y "
+          f"{raw['ring'][2]:.3e} mm (delta_r {raw['ring'][1]:.3e})")
+    assert abs(Fy + Ry) < min(1e-4 * scale, 1e-2 * abs(Ry))
+    assert abs(op.Fr + Fx + Rx) < 1e-4 * scale
+    assert np.sign(raw["ring"][2]) == np.sign(Ry)
 
 
 def test_friction_load_coupling_iterates_to_its_tolerance_or_reports_unconverged():

@@ -47,7 +47,7 @@ def test_tilted_solution_does_not_depend_on_the_start(model_for):
     ref = model.solve(op)
     assert ref["converged"]
     estimate = BearingModel.initial_ring(model, op)
-    for start in (0.3 * estimate, 3.0 * estimate, estimate + np.array([0.0, -0.05])):
+    for start in (0.3 * estimate, 3.0 * estimate, estimate + np.array([0.0, -0.05, 0.0])):
         model.initial_ring = lambda _op, s=start: s.copy()
         raw = model.solve(op)
         assert raw["converged"]

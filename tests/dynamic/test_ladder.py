@@ -116,7 +116,7 @@ def test_loaded_rollers_settle_to_the_quasi_static_loads(trb):
     Z = problem.bearing.Z
     y0 = dc.y0.copy()
     delta = abs(ref["ring"][0])
-    y0[Z * NS:Z * NS + 2] = ref["ring"]
+    y0[Z * NS:Z * NS + 3] = ref["ring"]
     for j in range(Z):
         y0[j * NS + ETA] += 0.2 * delta
     settings = dc.settings._replace(window=2e-3, samples=20, max_windows=1)
@@ -332,15 +332,16 @@ def test_steady_state_of_a_fast_radially_loaded_tsrb_matches_the_quasi_static_so
 
 
 @pytest.mark.xfail(strict=True, reason=(
-    "the rollers riding on the pocket walls take tangential tractions whose sum displaces the inner ring across "
-    "the load; the quasi-static ring balance has no such displacement (its friction loads are mirror-symmetric, "
-    "sim.api.friction_model), so the time domain's loads differ between mirror images by up to 4.5 % (3910 rpm) "
-    "and 2.8 % (4940 rpm) of the largest, their mirror-symmetric part by 1.3 % and 0.6 %"))
+    "the time domain's inner ring moves across the load by 6.7e-4 mm at 3910 rpm, the quasi-static one by 7.9e-5 "
+    "mm, which balances the lateral sum of the raceway tractions (30 N; session 27): the time domain's larger "
+    "lateral force is not identified (a candidate: the rollers' axial motion along the orbit, whose slip the "
+    "quasi-static solution leaves out). Loads differ by up to 4.1 % (3910 rpm) and 2.6 % (4940 rpm) of the "
+    "largest; without the lateral displacement 4.5 % and 2.8 %"))
 def test_roller_loads_of_a_fast_radially_loaded_tsrb_match_the_quasi_static_solver(fast_radial):
     """Issue 18's load target for the cases above: every roller's loads within 1 % of the largest."""
     summary, qs = fast_radial
     err = np.abs(summary["Q"] - qs["Q"]).max() / qs["Q"].max()
-    sym = np.abs(mirror_mean(summary["Q"]) - qs["Q"]).max() / qs["Q"].max()
+    sym = np.abs(mirror_mean(summary["Q"]) - mirror_mean(qs["Q"])).max() / qs["Q"].max()
     print(f"loads {err:.2e}, their mirror-symmetric part {sym:.2e} of the largest")
     assert err < 0.01
 

@@ -29,7 +29,8 @@ def test_trb_distribution_matches_harris(model_for, Fa, Fr):
     assert raw["converged"]
     g = model.geometry
     beta = g.alpha + g.gamma
-    da, dr = raw["ring"]
+    da, dr, dy = raw["ring"]
+    assert dy == 0.0                     # no friction loads: mirror-symmetric, no lateral displacement
     eps = 0.5 * (1.0 + da * np.tan(beta) / dr)
     psi = 2 * np.pi * np.arange(g.Z) / g.Z
     shape = np.clip(1.0 - (1.0 - np.cos(psi)) / (2.0 * eps), 0.0, None) ** (10.0 / 9.0)

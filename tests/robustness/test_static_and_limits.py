@@ -102,12 +102,16 @@ def test_trb_rib_term_is_the_coulomb_sum():
 
 @pytest.mark.parametrize("bearing", ["tsrb_reference", "trb_32208"])
 def test_breakaway_torque_is_linear_in_the_boundary_friction_coefficient(bearing):
-    """Without cage friction (so no friction load feeds back into the load distribution) and
-    with rolling kinematics every term is mu_s |s| Q: doubling mu_s doubles the torque."""
+    """Without cage friction and with rolling kinematics every term is mu_s |s| Q: doubling mu_s
+    doubles the torque, up to the one friction load that still feeds back into the load
+    distribution, the lateral sum of the inner raceway's tangential tractions (session 27), which
+    grows with mu_s and moves the ring across the load by a small fraction of its radial
+    displacement (5.6e-4 for the reference TSRB at 3 / 2 kN, 2000 rpm): tolerance 1e-5 (measured
+    1.4e-6 and 4.2e-7; 1e-9 before the lateral displacement)."""
     torques = [_one(_sim(f"bearing={bearing}", "load.speed=0", "friction.kinematics=rolling", "friction.cage_guidance=rigid",
                          "friction.cage_friction_coefficient=0", f"friction.solid_friction_coefficient={mu}"),
                     "torque") for mu in (0.05, 0.1)]
-    assert torques[1] == pytest.approx(2.0 * torques[0], rel=1e-9)
+    assert torques[1] == pytest.approx(2.0 * torques[0], rel=1e-5)
 
 
 def test_small_speeds_approach_the_breakaway_torque():
