@@ -12,7 +12,7 @@ import sim
 from sim.api.cases import operating_points
 from sim.api.friction_model import coupled_solution
 from sim.api.simulation import build_models, resolved
-from sim.physics.friction import (COMPONENTS, EV_MU, EV_P0, EV_TOUT, EV_TZ, NC, NEV, lubrication_state,
+from sim.physics.friction import (COMPONENTS, EV_MU, EV_P0, EV_TOUT, EV_TZ, NC, NEV, NFL, lubrication_state,
                                   pocket_wall_force, roller_friction)
 from sim.solvers.kinematics import FINAL_TOLERANCE_FACTOR, free_roller_speeds
 
@@ -59,7 +59,7 @@ def solved_again_at_the_final_film(friction, op, raw, fr):
                           known=free.known.copy())
     lubrication_state(wR, free.orbit, pb.wi, loaded, pb.case)
     totals = np.zeros(NEV)
-    loads = np.zeros((Z, 5))
+    loads = np.zeros((Z, NFL))
     assert free_roller_speeds(pb.wi, wR, psi, again, pb.case, settings, totals, loads, pb.jac)
     orbit = again.orbit
     ev = np.zeros(NEV)
