@@ -380,15 +380,20 @@ def test_cage_pocket_friction_enters_the_load_distribution():
     """The cage pocket friction force acts on the roller in its meridian plane (along v') and the
     quasi-static balance takes it back (issue: friction forces enter the force balance), with the
     cage rigid (friction.cage_guidance = rigid: the free rollers carry no pocket force). With no
-    pocket friction the roller loads are those of the frictionless balance; with it they change,
-    while the bearing still balances Fa and the energy balance still holds."""
+    pocket friction the roller loads are those of the frictionless balance up to the lateral sum of
+    the inner raceway's tangential tractions, which moves the ring across the load (session 27:
+    1.2e-4 of the loads here, tolerance 1e-3); with pocket friction they change beyond the solver's
+    tolerance (1e-9; measured 5.8e-5), while the bearing still balances Fa and the energy balance
+    still holds."""
     base = ["bearing=trb_32208", "load.Fr=4000", "friction.cage_guidance=rigid"]
     free = sim.simulate(sim.load_config(base + ["friction.cage_friction_coefficient=0"])).isel(design=0, case=0)
     rough = sim.simulate(sim.load_config(base + ["friction.cage_friction_coefficient=0.3"])).isel(design=0, case=0)
     plain = sim.simulate(sim.load_config(base + ["friction.enabled=false"])).isel(design=0, case=0)
-    # without pocket friction nothing feeds back: identical loads (up to the solver tolerance 1e-9)
-    np.testing.assert_allclose(free.Q.values, plain.Q.values, rtol=1e-6)
+    # without pocket friction only the tractions' lateral sum feeds back
+    np.testing.assert_allclose(free.Q.values, plain.Q.values, rtol=1e-3)
+    assert float(free.ring_displacement.sel(direction="lateral")) != 0.0
     change = np.abs(rough.Q.values - free.Q.values).max() / free.Q.values.max()
+    print(f"pocket friction changes the loads by {change:.2e} of the largest")
     assert change > 1e-6
     assert float(rough.torque_component.sel(component="cage")) > 0.0
     omega_i = np.pi * float(rough.speed) / 30.0
