@@ -356,6 +356,14 @@ def _scaled_norm(T, M, S, psi, settings, par):
     return norm, worst
 
 
+@internal_kernel
+def _require_friction_load_columns(loads):
+    """ValueError unless the friction loads' array (Z, m) has m = NFL columns (the layout
+    sim.physics.friction.FRICTION_LOADS): the kernels write NFL per roller, past a narrower array's end."""
+    if loads.shape[1] != NFL:
+        raise ValueError("the friction loads' array must have NFL columns (sim.physics.friction.FRICTION_LOADS)")
+
+
 @kernel
 def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, jac, loads):
     """Newton on all roller speeds (and skews) and the cage speed together (arrow-shaped Jacobian).
@@ -379,8 +387,7 @@ def solve_kinematics_newton(wc, presolve, wi, wR, psi, case, settings, totals, j
     crowned TSRBs; one bracketed solve instead of one per roller, the Newton iteration does the
     rest); with skew, that roller's skew at its speed (bracketed), the start of every roller's.
     """
-    if loads.shape[1] != NFL:
-        raise ValueError("loads must have NFL columns (sim.physics.friction.FRICTION_LOADS)")
+    _require_friction_load_columns(loads)
     active, weight, tol_M = settings.active, settings.weight, settings.tol_M
     dMdw, dTdw, dMdc, dTdc, dMdp, dSdw, dSdp, dSdc, dTdp, known = jac
     par = case.par
@@ -615,8 +622,7 @@ def solve_friction(wc, wR, psi, wi, fresh, case, settings, totals, roller_loads,
     -------
     (omega_c [rad/s], converged)
     """
-    if roller_loads.shape[1] != NFL:
-        raise ValueError("roller_loads must have NFL columns (sim.physics.friction.FRICTION_LOADS)")
+    _require_friction_load_columns(roller_loads)
     active, weight = settings.active, settings.weight
     passes = 2 if settings.traction and fresh and settings.final else 1
     converged = True
@@ -1109,6 +1115,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
     coupling, not ``settings.final``: ``settings.seed_factor``) x settings.tol_M on the moments, on
     each roller's z-moment x tol_T over the number of rollers, on the cage's x tol_T. Returns
     converged (every roller, the sweeps, the cage and the film passes)."""
+    _require_friction_load_columns(loads)
     Z = wR.shape[0]
     active = settings.active
     for j in range(Z):

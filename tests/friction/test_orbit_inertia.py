@@ -40,12 +40,13 @@ def solved(overrides):
     return friction, op, raw, fr
 
 
-def solved_again_at_the_final_film(friction, op, raw, fr):
+def solved_again_at_the_final_film(friction, op, raw, fr, load_columns=NFL):
     """The free rollers solved again from their solution with every loaded roller's film taken at
     its solved spin and orbit speed (the solver takes it again only where one moved by more than
     FREE_FILM_SPIN_TOLERANCE): (spins, skews, orbit speeds, friction moments about the roller
     axes, loaded rollers, c, outer-ring torque, power [N mm/s], its problem, its FreeRollers, the
-    z-moments of the rollers' contacts about the bearing axis [N mm])."""
+    z-moments of the rollers' contacts about the bearing axis [N mm]). ``load_columns``: the width of
+    the friction loads' work array (NFL; another width is refused)."""
     wc, wR, psi, _, free = fr["kinematics"]
     pb = friction.problem(op, raw, start=fr["kinematics"])
     Z = wR.shape[0]
@@ -59,7 +60,7 @@ def solved_again_at_the_final_film(friction, op, raw, fr):
                           known=free.known.copy())
     lubrication_state(wR, free.orbit, pb.wi, loaded, pb.case)
     totals = np.zeros(NEV)
-    loads = np.zeros((Z, NFL))
+    loads = np.zeros((Z, load_columns))
     assert free_roller_speeds(pb.wi, wR, psi, again, pb.case, settings, totals, loads, pb.jac)
     orbit = again.orbit
     ev = np.zeros(NEV)
@@ -93,6 +94,16 @@ def test_each_rollers_spin_changes_from_its_predecessors_by_its_friction_moment(
     Z = wR.shape[0]
     mirror = wR[(Z - np.arange(Z)) % Z]
     assert np.abs(wR - mirror).max() > 1e-3 * wR.max()
+
+
+def test_a_friction_loads_array_of_another_width_is_refused():
+    """The kernels write NFL friction loads per roller (sim.physics.friction.FRICTION_LOADS). A
+    narrower work array was written past its end and aborted the interpreter later (this file's
+    hard-coded 5 columns once the tangential ring load made them 6, session 27); now it is refused
+    by name before anything runs."""
+    friction, op, raw, fr = solved(CASES["fast_tsrb"])
+    with pytest.raises(ValueError, match="NFL columns"):
+        solved_again_at_the_final_film(friction, op, raw, fr, load_columns=NFL - 1)
 
 
 @pytest.mark.parametrize("name", list(CASES))
