@@ -120,14 +120,14 @@ QuasiStaticProblem = namedtuple("QuasiStaticProblem", ["bearing", "elasticity", 
 RollerSet = namedtuple("RollerSet", ["poses", "q", "active", "Q", "Q_rib", "rib_contact", "frames", "free"])
 
 # What solve_bearing reports: converged; iterations (ring Newton iterations; axisymmetric case:
-# Newton iterations of the load-controlled roller); residual_axial, residual_radial, residual_lateral: force
-# residual on the inner ring [N]; unconverged_classes and loaded_classes: roller classes without
-# equilibrium and loaded ones; roller_iterations (Newton), contact_evaluations (roller_contact
+# Newton iterations of the load-controlled roller); residual_axial, residual_radial,
+# residual_lateral: force residual on the inner ring [N]; unconverged_classes and loaded_classes:
+# roller classes without equilibrium and loaded ones; roller_iterations (Newton), contact_evaluations (roller_contact
 # calls), ring_backtracks; roller_classes: rollers solved (sim.solvers.symmetry); unrested_rollers:
 # rollers outside the load zone released although problem.rest (left unloaded).
 SolveReport = namedtuple("SolveReport", ["converged", "iterations", "residual_axial", "residual_radial",
-                                         "residual_lateral", "unconverged_classes", "loaded_classes", "roller_iterations",
-                                         "contact_evaluations", "ring_backtracks", "roller_classes",
+                                         "residual_lateral", "unconverged_classes", "loaded_classes",
+                                         "roller_iterations", "contact_evaluations", "ring_backtracks", "roller_classes",
                                          "unrested_rollers"])
 
 # Load control of one roller solve: Fa_share, the roller's share Fa / Z of the axial load [N]
@@ -764,8 +764,8 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
         N mm] (:func:`solve_roller`).
     problem : QuasiStaticProblem
     ring0 : ndarray (3,)
-        Start value of (delta_a, delta_r, delta_y) [mm], the first two not both zero: its size is the ring's length
-        scale (BearingModel.initial_ring: the Hertz approach); the solution is written back.
+        Start value of (delta_a, delta_r, delta_y) [mm], the first two not both zero: its size is the
+        ring's length scale (BearingModel.initial_ring: the Hertz approach); the solution is written back.
     rollers : RollerSet
         Poses, q and active are a warm start in when ``warm``; everything is written. The
         frames are those of the last contact evaluation of each roller: of the returned poses
@@ -1138,5 +1138,5 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
     for j in range(nz):
         if unrested[j]:
             n_unrested += int(mult[j])
-    return SolveReport(converged, it_ring + 1, residual_axial, residual_radial, residual_lateral, nbad, nload, roller_its, roller_evals,
-                       n_backtracks, nz, n_unrested)
+    return SolveReport(converged, it_ring + 1, residual_axial, residual_radial, residual_lateral, nbad, nload,
+                       roller_its, roller_evals, n_backtracks, nz, n_unrested)

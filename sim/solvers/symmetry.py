@@ -6,8 +6,8 @@ symmetric about the x-z plane: roller j at psi_j = 2 pi j / Z and roller Z - j a
 same ring displacement in their meridian planes (the same cos(psi), the same rotation
 phi = tilt cos(psi); the ring's lateral displacement is 0). They are mirror images when their
 external roller loads are equal. Without radial and lateral load and tilt, and with equal external
-loads on every roller, all rollers are alike (axisymmetric case). The quasi-static solver and the friction evaluation reduce their
-roller loops by the same classes.
+loads on every roller, all rollers are alike (axisymmetric case). The quasi-static solver and the
+friction evaluation reduce their roller loops by the same classes.
 """
 import numpy as np
 
