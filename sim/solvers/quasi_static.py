@@ -217,21 +217,23 @@ def _kinematic_pose(ring, phi, cpsi, bearing, pose):
 
 
 @internal_kernel
-def _ring_projection(j, Z, lateral, proj):
-    """Roller j's azimuth psi_j = 2 pi j / Z as the projection of its meridian plane's (axial,
-    radial) on the ring's (axial, x, y), written to ``proj``: (1, cos(psi_j), sin(psi_j)), the
-    last 0 where the ring has no lateral displacement (:func:`solve_bearing`); returns cos(psi_j)."""
-    psi = 2.0 * np.pi * j / Z
-    proj[0] = 1.0
-    proj[1] = np.cos(psi)
-    proj[2] = np.sin(psi) if lateral else 0.0
-    return proj[1]
+def _ring_projections(n, Z, lateral):
+    """The azimuths psi_j = 2 pi j / Z of rollers j < n as projections of their meridian planes'
+    (axial, radial) on the ring's (axial, x, y): rows (1, cos(psi_j), sin(psi_j)), the last 0 where
+    the ring has no lateral displacement (:func:`solve_bearing`)."""
+    proj = np.empty((n, 3))
+    for j in range(n):
+        psi = 2.0 * np.pi * j / Z
+        proj[j, 0] = 1.0
+        proj[j, 1] = np.cos(psi)
+        proj[j, 2] = np.sin(psi) if lateral else 0.0
+    return proj
 
 
 @internal_kernel
 def _meridian(ring, proj, out):
     """A ring displacement (or step) (delta_a, delta_r, delta_y) [mm] seen in the meridian plane of
-    the roller of projection ``proj`` (:func:`_ring_projection`): (delta_a, delta_r cos(psi) +
+    the roller of projection ``proj`` (a row of :func:`_ring_projections`): (delta_a, delta_r cos(psi) +
     delta_y sin(psi)), written to ``out``."""
     out[0] = ring[0]
     out[1] = ring[1] * proj[1] + ring[2] * proj[2]
@@ -862,7 +864,7 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
     Kc = np.zeros((3, 3))
     Kl = np.zeros((2, 2))  # a roller's condensed stiffness in its meridian plane (axial, radial)
     fl = np.zeros(2)     # its ring forces with its first-order correction
-    proj = np.zeros(3)   # its (axial, radial) -> (axial, x, y): 1, cos(psi), sin(psi) (0 without delta_y)
+    projs = _ring_projections(nz, Z, lateral)  # each class's (axial, radial) -> the ring's (axial, x, y)
     kin = np.empty(3)
     kin_prev = np.empty(3)
     roller_its = 0
@@ -895,7 +897,8 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
         fail_sum = 0.0
         Ffail.fill(0.0)
         for j in range(nz):
-            cpsi = _ring_projection(j, Z, lateral, proj)
+            proj = projs[j]
+            cpsi = proj[1]
             phi = tilt * cpsi
             _meridian(ring, proj, ring_j)
             if status[j] != 1 and status[j] != 3:
@@ -903,10 +906,8 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
                 # just before (warm start of its slice loads too)
                 _kinematic_pose(ring_j, phi, 1.0, bearing, kin)
                 if j > 0 and status[j - 1] == 1:
-                    cprev = _ring_projection(j - 1, Z, lateral, proj)
-                    _meridian(ring, proj, ring_prev)
-                    _kinematic_pose(ring_prev, tilt * cprev, 1.0, bearing, kin_prev)
-                    _ring_projection(j, Z, lateral, proj)
+                    _meridian(ring, projs[j - 1], ring_prev)
+                    _kinematic_pose(ring_prev, tilt * projs[j - 1, 1], 1.0, bearing, kin_prev)
                     for a in range(3):
                         poses[j, a] = kin[a] + poses[j - 1, a] - kin_prev[a]
                     copy_matrix(q[j], q[j - 1])
@@ -1040,8 +1041,7 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
                 for a in range(3):
                     poses[j, a] = pose_acc[j, a]
                 if st_acc[j] == 1:
-                    _ring_projection(j, Z, lateral, proj)
-                    _meridian(step, proj, step_j)
+                    _meridian(step, projs[j], step_j)
                     _local_to_pose(poses[j],
                                    z_acc[j, 0] - t_ring * (X_acc[j, 0, 0] * step_j[0] + X_acc[j, 0, 1] * step_j[1]),
                                    z_acc[j, 1] - t_ring * (X_acc[j, 1, 0] * step_j[0] + X_acc[j, 1, 1] * step_j[1]),
@@ -1102,8 +1102,7 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
         # predictor: each roller takes its Newton correction and follows the ring along its tangent
         for j in range(nz):
             if status[j] == 1:
-                _ring_projection(j, Z, lateral, proj)
-                _meridian(step, proj, step_j)
+                _meridian(step, projs[j], step_j)
                 _local_to_pose(poses[j], zc[j, 0] - (X[j, 0, 0] * step_j[0] + X[j, 0, 1] * step_j[1]),
                                zc[j, 1] - (X[j, 1, 0] * step_j[0] + X[j, 1, 1] * step_j[1]),
                                zc[j, 2] - (X[j, 2, 0] * step_j[0] + X[j, 2, 1] * step_j[1]))
