@@ -44,6 +44,7 @@ CASE_VARIABLES = {
     "C_eff": ((), "N", "ISO 281 dynamic load rating with L_eff, thesis (7.1)"),
     "P": ((), "N", "ISO 281 equivalent dynamic load (2.12)"),
     "P0": ((), "N", "ISO 281 equivalent static load (2.8)"),
+    "static_safety_factor": ((), "1", "static safety s0 = C0 / P0 from the solved contact, (4000 MPa / pmax)^2 (ISO 76: 4000 MPa at the most loaded contact defines C0; line contact, load ~ pressure^2); a case below 1 / solver.max_static_load_ratio is reported as not converged"),
     "L10": ((), "1e6 rev", "basic rating life with C_eff (2.15)"),
     "cage_speed": ((), "rpm", "cage speed: from the traction balance with friction, else rolling without slip (2.20)"),
     "torque": ((), "N*mm", "frictional torque of the bearing (on the outer ring; power loss / inner-ring speed with friction.kinematics = rolling); at speed 0 the breakaway torque (boundary friction, no film)"),
@@ -609,7 +610,8 @@ def build_batch_dataset(designs):
                 target[(i, c) + tuple(slice(0, n) for n in value.shape)] = value
             if not res["converged"]:
                 rows.append({"design": i, "case": c, "reason": "not converged",
-                             "message": f"converged = False after {int(res['iterations'])} ring iterations"})
+                             "message": res.get("status") or
+                             f"converged = False after {int(res['iterations'])} ring iterations"})
     data = {}
     for name in names:
         dims, units, long_name = CASE_VARIABLES.get(name) or ((), None, None)

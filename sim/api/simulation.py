@@ -83,7 +83,8 @@ def solve_case(model, friction, op, output_cfg):
         return case_results(model, op, raw, output_cfg)
     res = case_results(model, op, raw, output_cfg)
     if not (res["converged"] and fr.pop("friction_converged") and fr.pop("coupling_converged")):
-        return {key: res[key] for key in ("iterations", "wall_time", "P", "P0", "unrested_rollers")} | {"converged": False}
+        return ({key: res[key] for key in ("iterations", "wall_time", "P", "P0", "unrested_rollers", "status") if key in res}
+                | {"converged": False})
     fr.pop("roller_loads")
     fr.pop("ring_loads")
     fr.pop("kinematics")

@@ -68,3 +68,24 @@ def test_released_roller_of_a_tilted_trb_carries_nothing(centrifugal):
     else:
         assert np.all(raw["Q"][outside].sum(axis=1) + raw["Q_rib"][outside] == 0.0)
         assert np.all(roller_residuals(model, raw, op, reported=True) < 1e-8)
+
+
+def test_continuation_with_unequal_ring_loads_runs():
+    """Random in-range cases (session 28): a load solve with unequal friction loads on the inner ring
+    (the lateral sum of the tractions, sim.api.friction_model.coupled_solution) whose direct solve
+    failed crashed on its way to the continuation fallback (AttributeError: the projection's sin(psi)
+    had been named like the solver settings). With 2 ring iterations the direct solve fails here, so
+    the continuation runs: it must return a result (converged or not) instead of raising, and the
+    same solve with the full iteration budget converges."""
+    from sim.api.bearing_model import OperatingPoint
+    from sim.api.simulation import build_model
+
+    op = OperatingPoint(4500.0, 2000.0, 2000.0, 0.0, 55.0)
+    Z = build_model(sim.load_config(["bearing=trb_32208"])).geometry.Z
+    ring_loads = np.zeros((Z, 3))
+    ring_loads[:, 1] = np.where(np.cos(2.0 * np.pi * np.arange(Z) / Z) > 0.0, 0.5, 0.0)   # tangential, load zone
+    short = build_model(sim.load_config(["bearing=trb_32208", "solver.max_iterations=2"]))
+    raw = short.solve(op, ring_loads=ring_loads)
+    assert raw["solver_info"]["continuation_steps"] > 1
+    full = build_model(sim.load_config(["bearing=trb_32208"])).solve(op, ring_loads=ring_loads)
+    assert full["converged"] and full["ring_load"][2] != 0.0

@@ -7,7 +7,9 @@
   in mu_s), its independence of the lubricant, and continuity from small positive speeds.
 - The model's validity limits (solver.max_speed_dm, solver.max_static_load_ratio, the single
   row's axial share Fa > Fr tan(a_min)) refuse a case just beyond them, before any solve, naming
-  the key, its value, the allowed range and the reason, and accept it at the bound. Degenerate in-range values (alpha underflowing to 0 rad,
+  the key, its value, the allowed range and the reason, and accept it at the bound (where the
+  static limit is checked once more on the solved contact: a TSRB's, which eq. (2.10) overrates, is
+  then reported as not converged). Degenerate in-range values (alpha underflowing to 0 rad,
   the inputs that crashed before) end in a refusal or a result.
 """
 import numpy as np
@@ -183,6 +185,10 @@ def test_static_load_limit_at_and_beyond_the_bound(bearing):
     top = _static_bound(g, s, Fr)
     ds = _sim(f"bearing={bearing}", f"load.Fa={top * (1 - 1e-9)!r}", f"load.Fr={Fr}", *FAST)
     assert _one(ds, "P0") <= s.max_static_load_ratio * float(ds["C0"].values[0]) * (1 + 1e-9)
+    # accepted before the solve; solved, the TRB's line contact reaches about 4000 MPa there and is a
+    # result, while the crowned TSRB roller reaches ~5.9 GPa (eq. (2.10) overstates its static capacity,
+    # tests/published/test_static_capacity.py) and is reported as not converged by the same limit
+    assert bool(_one(ds, "converged")) == (g.type == "TRB")
     with pytest.raises(InputError) as err:
         _sim(f"bearing={bearing}", f"load.Fa={top * (1 + 1e-6)!r}", f"load.Fr={Fr}", *FAST)
     message = str(err.value)
