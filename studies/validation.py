@@ -45,9 +45,10 @@ from omegaconf import OmegaConf
 
 import sim
 from sim import CONF_DIR
-from sim.api import (SKF_TAPERED_CONSTANTS, InputError, TRACTION_LAWS, Geometry, Lubricant, aihara_1987_trb, aihara_rolling_moment,
-                     bearing_model_traction_law, operating_points, pressure_viscosity_roelands, skf_2004_trb,
-                     torque_exponent, traction_curve, twin_disc_contact)
+from sim.api import (SKF_TAPERED_CONSTANTS, InputError, TRACTION_LAWS, Geometry, Lubricant, OperatingPoint, aihara_1987_trb,
+                     aihara_rolling_moment, bearing_model_traction_law, build_model, operating_points,
+                     pressure_viscosity_roelands, ratings, skf_2004_trb, torque_exponent, traction_curve,
+                     twin_disc_contact)
 from sim.api.cli import run
 from sim.io import git_commit, package_version, write_bytes_atomic, write_figure_atomic, write_netcdf_atomic
 
@@ -59,6 +60,12 @@ PRESSURE_VISCOSITY_ANCHOR = 1
 #: Median relative error allowed for the published coefficients (section g): the table prints alpha to 2-3
 #: digits (13 +- 0.5 is 4 %) and does not say whether it is a secant or the initial slope.
 PRESSURE_VISCOSITY_TOLERANCE = 0.05
+#: Section h: the bearings whose static capacity is solved, and the band of the TRBs' pure axial load at
+#: 4000 MPa over eq. (2.10)'s C0 / Y0 (ISO 76): eq. (2.10) folds the load distribution of a rigid ring and an
+#: ideal line contact into its factor 44, the solved roller has a logarithmic crown and elastic slices.
+STATIC_BEARINGS = ("trb_32208", "trb_31313", "tsrb_reference", "tsrb_prototype", "tsrb_pinion", "tsrb_pinion_alpha",
+                   "tsrb_pinion_long")
+STATIC_TRB_BAND = (0.9, 1.1)
 #: Oil temperatures of the section g curves [degC].
 PRESSURE_VISCOSITY_TEMPERATURES = tuple(float(t) for t in range(20, 125, 5))
 
@@ -296,6 +303,32 @@ def _pure_axial(bearing, loads, speed, temperature, extra=()):
                  f"load.oil_temperature={temperature:g}", *extra])
 
 
+def static_capacity(bearings=STATIC_BEARINGS):
+    """Section h, per bearing: eq. (2.10)'s pure axial limit C0 / Y0 [N], the pure axial load [N] at which
+    the solved contact reaches ISO 76's 4000 MPa (load distribution alone, 100 rpm, default slices; Brent's
+    method to 1e-4), the static safety (4000 / pmax)^2 at the limit and whether a contact runs onto a roller
+    end there."""
+    from scipy.optimize import brentq
+
+    out = {"iso_limit": [], "load_4000": [], "s0": [], "edge": []}
+    for bearing in bearings:
+        overrides = [f"bearing={bearing}", "friction.enabled=false", "solver.max_static_load_ratio=4"]
+        model = build_model(sim.load_config(overrides))
+        limit = model.axial_static_limit()
+
+        def pmax(Fa):
+            raw = model.solve(OperatingPoint(Fa, 0.0, 100.0, 0.0, 55.0))
+            return float(raw["pressure"].max()) if raw["converged"] else np.nan
+
+        load = brentq(lambda Fa: pmax(Fa) - ratings.ISO76_ROLLER_CONTACT_STRESS, 0.02 * limit, 2.0 * limit, rtol=1e-4)
+        case, _ = _run(overrides + [f"load.Fa={limit!r}", "load.Fr=0", "load.speed=100"])
+        out["iso_limit"].append(limit)
+        out["load_4000"].append(load)
+        out["s0"].append(float(case.static_safety_factor.isel(case=0)))
+        out["edge"].append(float(case.edge_stress.isel(case=0)))
+    return out
+
+
 def torque_over_speed(speeds, temperatures):
     """Section f: each case of :data:`SPEED_BEARINGS` (bearing, pure axial load) over ``speeds`` [rpm]
     x ``temperatures`` [degC], this model and SKF 2004; per case a dict of (temperature, speed)
@@ -518,6 +551,19 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
         "pressure-viscosity coefficient of the lubricant config at the oil temperature")
     put("pressure_viscosity_anchor", "lubricant", [lub.pressure_viscosity_temperature for lub in lubs], "degC",
         "temperature at which the configured coefficient holds")
+
+    # h.
+    log("h. static capacity: the pure axial load at 4000 MPa against eq. (2.10)'s C0 / Y0 (ISO 76)")
+    cap = static_capacity()
+    ds = ds.assign_coords(static_bearing=("static_bearing", list(STATIC_BEARINGS), {"long_name": "bearing config"}))
+    put("static_iso_limit", "static_bearing", cap["iso_limit"], "N",
+        "pure axial load at P0 = C0 of eq. (2.10) (ISO 76), the binding angle of the model's check")
+    put("static_load_4000", "static_bearing", cap["load_4000"], "N",
+        "pure axial load at which the solved contact reaches 4000 MPa (ISO 76's definition of C0)")
+    put("static_safety_at_iso_limit", "static_bearing", cap["s0"], "1",
+        "static safety (4000 MPa / pmax)^2 of the solved case at the eq. (2.10) limit")
+    put("static_edge_at_iso_limit", "static_bearing", cap["edge"], "1",
+        "1: a contact runs onto a roller end at the eq. (2.10) limit (pmax then grows with n_slices)")
     ds.attrs["pressure_viscosity_source"] = pv["source"]
 
     # targets (e., f., g.)
@@ -632,6 +678,13 @@ def targets(ds):
             row(f"TRBs: rolling moment's {var.split('_')[1]} exponent minus SKF 2004 M_rr's, worst of {d.size} "
                 f"({where})", published, worst, -EXPONENT_TOLERANCE, EXPONENT_TOLERANCE, "1",
                 "section f; EHL rolling resistance in both models")
+    if "static_bearing" in ds.coords:
+        for b in ds.static_bearing.values:
+            if str(b).startswith("trb"):
+                t = ds.sel(static_bearing=b)
+                row(f"{b}: pure axial load at 4000 MPa over eq. (2.10)'s C0 / Y0", "standard (ISO 76)",
+                    float(t.static_load_4000 / t.static_iso_limit), *STATIC_TRB_BAND, "1",
+                    "section h; line contact along the roller")
     if "pv_measured" in ds:
         err = np.abs(ds.pv_roelands.values / ds.pv_measured.values - 1.0)
         row(f"pressure-viscosity coefficient at 30 / 100 degC from 60 degC, median relative error over "
@@ -1074,6 +1127,25 @@ def write_report(ds, out, figures):
     a(_table(["lubricant", *[f"alpha at {t:g} degC [GPa^-1]" for t in temps]],
              [[str(lub), *[f"{float(ds.pressure_viscosity.sel(lubricant=lub, pv_temperature=t)):.1f}" for t in temps]]
               for lub in ds.lubricant.values]) + "\n")
+
+    a("## h. Static capacity: the solved contact against ISO 76\n")
+    a("ISO 76 defines the basic static load rating C0 of a roller bearing as the load that raises the most loaded "
+      "contact to 4000 MPa; eq. (2.10) (thesis 2.1.4) estimates it for straight rollers in line contact along Lwe. "
+      "Here the load distribution is solved at pure axial loads (100 rpm, default slices) for the load at which pmax "
+      "reaches 4000 MPa, against eq. (2.10)'s limit C0 / Y0 at the angle of the model's static check. A solved "
+      "case's static safety is s0 = (4000 MPa / pmax)^2 (line contact: load ~ pressure^2; the result's "
+      "`static_safety_factor`), and a case with s0 < 1 / `solver.max_static_load_ratio` is reported as not "
+      "converged.\n")
+    a(_table(["bearing", "C0 / Y0 [kN]", "load at 4000 MPa [kN]", "ratio", "s0 at C0 / Y0", "edge contact there"],
+             [[str(b), f"{float(ds.static_iso_limit[k]) / 1e3:.1f}", f"{float(ds.static_load_4000[k]) / 1e3:.1f}",
+               f"{float(ds.static_load_4000[k] / ds.static_iso_limit[k]):.2f}",
+               f"{float(ds.static_safety_at_iso_limit[k]):.2f}", "yes" if ds.static_edge_at_iso_limit[k] else "no"]
+              for k, b in enumerate(ds.static_bearing.values)]) + "\n")
+    a("The TRBs, whose rollers touch their raceways along the roller, reach 4000 MPa at eq. (2.10)'s load. The "
+      "crowned TSRB rollers touch each raceway in two short zones and reach it at a fraction of that load: for them "
+      "eq. (2.10), and thesis Table 6.2's C0 of the prototype, overstate the static capacity. Where the contact runs "
+      "onto a roller end the slice pmax is an average of the end's peak and grows with `solver.n_slices`, so their "
+      "load at 4000 MPa is an upper bound (README, Ratings).\n")
 
     a("## Files\n")
     a("- `validation.nc`: every plotted number with units (CF attributes); the target table as `target_*`.")

@@ -165,6 +165,11 @@ class BearingModel:
                             for angle, source in angles.items()]
         return self._static
 
+    def axial_static_limit(self):
+        """The pure axial load [N] at which P0 = Y0 Fa reaches C0 of eq. (2.10) (ISO 76) at the angle of
+        :meth:`check_limits` that binds: the largest Fa it accepts at solver.max_static_load_ratio = 1."""
+        return min(C0 / float(ratings.equivalent_static_load(0.0, 1.0, angle)) for angle, _, C0 in self._static_ratings())
+
     def check_limits(self, op: OperatingPoint):
         """Refuse a load case beyond the validity of the model, before any solve: InputError
         naming the load key, its value, the allowed range for this bearing and the reason.

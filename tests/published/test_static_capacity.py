@@ -31,15 +31,10 @@ from sim.physics import ratings
 NO_FRICTION = ["friction.enabled=false"]
 
 
-def iso_axial_limit(model):
-    """Fa [N] at which P0 = Y0 Fa reaches C0 of eq. (2.10), at the angle of the check that binds."""
-    return min(C0 / float(ratings.equivalent_static_load(0.0, 1.0, angle)) for angle, _, C0 in model._static_ratings())
-
-
 def solved_static_safety(bearing, Fa_share, *overrides):
     cfg = sim.load_config([f"bearing={bearing}", *NO_FRICTION, *overrides])
     model, _ = build_models(cfg)
-    Fa = Fa_share * iso_axial_limit(model)
+    Fa = Fa_share * model.axial_static_limit()
     ds = sim.simulate(sim.load_config([f"bearing={bearing}", *NO_FRICTION, *overrides, f"load.Fa={Fa!r}",
                                        "load.Fr=0"])).isel(design=0, case=0)
     return ds
@@ -85,7 +80,7 @@ def test_a_solved_case_beyond_the_static_limit_is_no_result(caplog):
     from sim.api.simulation import simulate_batch
 
     model, _ = build_models(sim.load_config(["bearing=tsrb_reference", *NO_FRICTION]))
-    load = [f"load.Fa={0.6 * iso_axial_limit(model)!r}", "load.Fr=0"]
+    load = [f"load.Fa={0.6 * model.axial_static_limit()!r}", "load.Fr=0"]
     cfg = sim.load_config(["bearing=tsrb_reference", *NO_FRICTION, *load])
     with caplog.at_level("WARNING"):
         ds = sim.simulate(cfg).isel(design=0, case=0)
