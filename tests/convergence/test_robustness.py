@@ -64,8 +64,11 @@ def test_pinion_PCR200_contact_migrates_to_the_roller_edge(model_for):
     contacts (1e-8, solver tolerance with margin); load centroid beyond the large-end contact
     point x_large and the end slice the most loaded (edge contact); axial displacement within a
     factor 2 of the thesis (same order, the thesis's MBS slicing differs; 3.5 mm here), L_eff
-    within a factor 3 (the edge contact spans 2-3 slices of 1.21 mm at 20 slices)."""
-    model, cfg = model_for(*PINION_PCR200)
+    within a factor 3 (the edge contact spans 2-3 slices of 1.21 mm at 20 slices). Its edge
+    contact runs at 4450 MPa (slice pmax, static safety 0.81): beyond ISO 76's 4000 MPa, so the
+    static limit is raised (solver.max_static_load_ratio, 1 / 0.81 < 4) to read the outputs the
+    thesis reports; at the default limit the case is reported as not converged."""
+    model, cfg = model_for(*PINION_PCR200, "solver.max_static_load_ratio=4")
     op = case(35000.0, 0.0, speed=1100.0)
     raw = model.solve(op)
     assert raw["converged"]
