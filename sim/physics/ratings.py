@@ -50,9 +50,9 @@ __all__ = [
 
 #: lambda * nu of ISO 281:2007 Table 7 footnote (ISO/TR 1281-1) for radial roller bearings.
 LAMBDA_NU = 0.83
-#: MPa, the contact stress that defines C0 of every roller bearing (ISO 76:2006, 3.4 / 6.1: the calculated
-#: contact stress at the centre of the most heavily loaded roller / raceway contact under the static load C0;
-#: 4200 MPa for self-aligning and 4600 MPa for other ball bearings).
+#: MPa, the contact stress that defines C0 of every roller bearing (ISO 76: the calculated contact stress at
+#: the centre of the most heavily loaded roller / raceway contact under the static load C0; 4200 MPa for
+#: self-aligning and 4600 MPa for other ball bearings).
 ISO76_ROLLER_CONTACT_STRESS = 4000.0
 
 
@@ -417,12 +417,15 @@ def static_safety_from_pressure(pmax):
     ISO 76 defines C0 of a roller bearing as the load that raises the most loaded contact to
     ISO76_ROLLER_CONTACT_STRESS at its centre, and eq. (2.10) estimates it for straight rollers
     in line contact along Lwe. A line contact's pressure grows as the square root of its load
-    (Hertz, p0 = sqrt(q E* / (pi R)): the slice model's per-slice law), so the load the bearing
-    carries at 4000 MPa is P0 (4000 / pmax)^2 with pmax the pressure the load distribution gives at
-    P0: s0 from the solved contact, without eq. (2.10)'s assumption of a contact along the whole
-    roller. It matches C0 / P0 where that assumption holds (the TRBs, pure axial: the load at 4000
-    MPa within 1-6 % of eq. (2.10)'s, tests/published/test_static_capacity.py) and is 2.2-3.7 times
-    lower for the TSRBs, whose crowned rollers touch each raceway in two short zones.
+    (Hertz, p0 = sqrt(q E* / (pi R)): the slice model's per-slice law), so to first order the load
+    the bearing carries at 4000 MPa is P0 (4000 / pmax)^2 with pmax the pressure the load
+    distribution gives at P0: s0 from the solved contact, without eq. (2.10)'s assumption of a
+    contact along the whole roller (first order: a crowned contact lengthens with its load, so the
+    load at 4000 MPa found by solving is 2 % (TRB 32208) to 8 % (tsrb_reference) above that
+    estimate). s0 < 1 is exactly pmax > 4000 MPa. It matches C0 / P0 where eq. (2.10)'s assumption
+    holds (the TRBs, pure axial: the load at 4000 MPa within 1-6 % of eq. (2.10)'s,
+    tests/published/test_static_capacity.py) and is 2.2-3.7 times lower for the TSRBs, whose
+    crowned rollers touch each raceway in two short zones.
 
     Parameters
     ----------
