@@ -420,9 +420,9 @@ def static_safety_from_pressure(pmax):
     (Hertz, p0 = sqrt(q E* / (pi R)): the slice model's per-slice law), so to first order the load
     the bearing carries at 4000 MPa is P0 (4000 / pmax)^2 with pmax the pressure the load
     distribution gives at P0: s0 from the solved contact, without eq. (2.10)'s assumption of a
-    contact along the whole roller (first order: a crowned contact lengthens with its load, so the
-    load at 4000 MPa found by solving is 2 % (TRB 32208) to 8 % (tsrb_reference) above that
-    estimate). s0 < 1 is exactly pmax > 4000 MPa. It matches C0 / P0 where eq. (2.10)'s assumption
+    contact along the whole roller (first order: the load distribution and a crowned contact's
+    length change with the load, so the load at 4000 MPa found by solving differs from that
+    estimate, by -2 % for the TRB 32208 and +8 % for tsrb_reference at eq. (2.10)'s limit). s0 < 1 is exactly pmax > 4000 MPa. It matches C0 / P0 where eq. (2.10)'s assumption
     holds (the TRBs, pure axial: the load at 4000 MPa within 1-6 % of eq. (2.10)'s,
     tests/published/test_static_capacity.py) and is 2.2-3.7 times lower for the TSRBs, whose
     crowned rollers touch each raceway in two short zones.
