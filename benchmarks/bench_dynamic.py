@@ -50,6 +50,11 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   2.31 ms the normal contact alone at the TRB's start state); the raceway traction costs 67-104 us per
   roller (up to 640 Eyring stress solves where skew or rates make the slip two-sided), the rest is the
   film.
+- 2026-11-28 (session 28), one run each on the idle machine (load 0.4-1.0): 4254fa8 TRB 32208 72.9 s CPU (rhs
+  2.26 ms), pinion TSRB 22.9 s (2.18 ms); session 26's last commit d5ef078 right after: 71.4 s (2.12 ms) and
+  21.1 s (1.74 ms); the same work (11743 rhs, 469 Jacobians; 5321, 195). No change from sessions 27-28; the
+  machine ran this benchmark slower than when 6e00aa4 was measured above (51-54 s): the TRB 32208 misses
+  the 60 s target here.
 
 Run from the repository root::
 
