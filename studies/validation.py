@@ -42,6 +42,7 @@ import xarray as xr
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 from omegaconf import OmegaConf
+from scipy.optimize import brentq
 
 import sim
 from sim import CONF_DIR
@@ -308,8 +309,6 @@ def static_capacity(bearings=STATIC_BEARINGS):
     the solved contact reaches ISO 76's 4000 MPa (load distribution alone, 100 rpm, default slices; Brent's
     method to 1e-4), the static safety (4000 / pmax)^2 at the limit and whether a contact runs onto a roller
     end there."""
-    from scipy.optimize import brentq
-
     out = {"iso_limit": [], "load_4000": [], "s0": [], "edge": []}
     for bearing in bearings:
         overrides = [f"bearing={bearing}", "friction.enabled=false", "solver.max_static_load_ratio=4"]

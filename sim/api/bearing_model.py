@@ -170,6 +170,22 @@ class BearingModel:
         :meth:`check_limits` that binds: the largest Fa it accepts at solver.max_static_load_ratio = 1."""
         return min(C0 / float(ratings.equivalent_static_load(0.0, 1.0, angle)) for angle, _, C0 in self._static_ratings())
 
+    def static_limit(self, raw):
+        """The static load limit of :meth:`check_limits` on a solved contact (``raw``: a converged
+        :meth:`solve` result): (s0, status). s0 = (4000 MPa / pmax)^2
+        (sim.physics.ratings.static_safety_from_pressure); status None within the limit, else the
+        reason the case is no result of the elastic model: s0 < 1 / solver.max_static_load_ratio (eq.
+        (2.10)'s C0, which :meth:`check_limits` uses before the solve, assumes a line contact along
+        the whole roller; a crowned TSRB roller has 2.2-3.7 times less static capacity)."""
+        pmax = float(raw["pressure"].max())
+        s0 = float(ratings.static_safety_from_pressure(pmax))
+        limit = self.settings.max_static_load_ratio
+        if s0 * limit >= 1.0:
+            return s0, None
+        return s0, (f"pmax = {pmax:.0f} MPa: static safety s0 = (4000 MPa / pmax)^2 = {s0:.3g} < 1 / "
+                    f"solver.max_static_load_ratio = {1.0 / limit:.3g} (ISO 76: 4000 MPa at the most loaded contact "
+                    "defines C0; beyond it the steel yields and the elastic contact model does not hold)")
+
     def check_limits(self, op: OperatingPoint):
         """Refuse a load case beyond the validity of the model, before any solve: InputError
         naming the load key, its value, the allowed range for this bearing and the reason.
@@ -485,15 +501,8 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     if not raw["converged"]:
         return res
     p = raw["pressure"]                       # (Z, 2, N) MPa
-    # the static load limit of check_limits on the solved contact: eq. (2.10)'s C0 assumes a line contact
-    # along the whole roller, which a crowned TSRB roller does not have (2.2-3.7 times less static capacity,
-    # sim.physics.ratings.static_safety_from_pressure); a case beyond it is no result of the elastic model
-    s0 = float(ratings.static_safety_from_pressure(p.max()))
-    limit = model.settings.max_static_load_ratio
-    if s0 * limit < 1.0:
-        status = (f"pmax = {p.max():.0f} MPa: static safety s0 = (4000 MPa / pmax)^2 = {s0:.3g} < 1 / "
-                  f"solver.max_static_load_ratio = {1.0 / limit:.3g} (ISO 76: 4000 MPa at the most loaded contact "
-                  "defines C0; beyond it the steel yields and the elastic contact model does not hold)")
+    s0, status = model.static_limit(raw)      # a case beyond it is no result of the elastic model
+    if status is not None:
         log.warning("%s at Fa = %g N, Fr = %g N, %g rpm, tilt %g deg: %s; reported as not converged",
                     g.type, op.Fa, op.Fr, op.speed_rpm, op.tilt_deg, status)
         return res | {"converged": False, "status": status}

@@ -381,7 +381,7 @@ def film_outputs(case, load, wc, wR, wi):
     return srr, film_um, lam
 
 
-def coupled_solution(model, friction, op):
+def coupled_solution(model, friction, op, first=None):
     """Load distribution and friction of one case with the friction loads fed back: the friction
     loads on the rollers and their reaction on the inner ring (:meth:`FrictionModel.evaluate`:
     ``roller_loads``, ``ring_loads``) enter :meth:`sim.api.bearing_model.BearingModel.solve`, whose
@@ -420,18 +420,13 @@ def coupled_solution(model, friction, op):
     evaluated cold, warm from that and warm from the last pass gave 5880.8, 5889.9 and 5921.8 N mm).
     Where the warm passes do not settle, the coupling is run once more with every pass's kinematics
     from rolling kinematics and the rigid cage's solution (``warm`` False): a map of the applied
-    loads alone, which settles there in 2 passes (5880.8 N mm).
+    loads alone, which settles there in 2 passes (5880.8 N mm). It is not run for a rigid cage, whose
+    passes carry only speeds and a Jacobian between them, whose solve has one solution.
+
+    ``first``: ``model.solve(op)`` when the caller has it (the first solve, without friction loads;
+    both runs start from it).
     """
-    raw, fr = _coupled(model, friction, op, warm=True)
-    if fr is not None and fr["friction_converged"] and not fr["coupling_converged"] and friction.free_rollers:
-        raw, fr = _coupled(model, friction, op, warm=False)
-    return raw, fr
-
-
-def _coupled(model, friction, op, warm):
-    """:func:`coupled_solution`'s passes; ``warm``: each pass's kinematics start from the previous
-    pass's (else from rolling kinematics)."""
-    raw = model.solve(op)
+    raw = model.solve(op) if first is None else first
     if not raw["converged"]:
         return raw, None
     # With skew the friction loads of this first evaluation change the load distribution by
@@ -440,6 +435,16 @@ def _coupled(model, friction, op, warm):
     # seed them (FrictionModel.evaluate, final). Without skew (loads ~1e-5 of the roller loads,
     # changing by < 4e-8) it is solved as before, bit for bit.
     fr = friction.evaluate(op, raw, final=not friction.par.skew)
+    solution = _coupled(model, friction, op, raw, fr, warm=True)
+    if solution[1]["friction_converged"] and not solution[1]["coupling_converged"] and friction.free_rollers:
+        solution = _coupled(model, friction, op, raw, fr, warm=False)
+    return solution
+
+
+def _coupled(model, friction, op, raw, fr, warm):
+    """:func:`coupled_solution`'s passes from its first solve ``raw`` (converged) and the friction
+    evaluated there, ``fr`` (from rolling kinematics); ``warm``: each later pass's kinematics start
+    from the previous pass's (else from rolling kinematics)."""
     scale = np.ones(NFL)
     scale[FL_W] = 1.0 / model.geometry.Lwe          # moments [N mm] over Lwe: forces [N]
 
