@@ -130,7 +130,7 @@ def main(argv=None):
     from sim import io
     from sim.api import simulate_batch
     from sim.api.cases import operating_points
-    from sim.api.simulation import build_friction, build_model, default_workers, solve_case
+    from sim.api.simulation import build_friction, build_model, default_workers, optional_outputs, solve_case
 
     workers = args.workers or default_workers()
     print("batch benchmark (sim.api.simulate_batch) and per-call overhead of sim.simulate")
@@ -154,7 +154,8 @@ def main(argv=None):
         "OmegaConf.to_container": lambda: OmegaConf.to_container(cfg, resolve=True),
         "OmegaConf.to_yaml (uncached)": lambda: OmegaConf.to_yaml(cfg, resolve=True),
         "build_model + build_friction (uncached)": lambda: build_friction(cfg, build_model(cfg)),
-        "io.build_dataset": lambda: io.build_dataset(model.geometry, ops, results, text, model.settings),
+        "io.build_dataset": lambda: io.build_dataset(model.geometry, ops, results, text, model.settings,
+                                                      optional_outputs(friction)),
     }, n)
     print(f"per-call overhead, reference TSRB, one combined case, median of {n} warm calls, interleaved:")
     print(f"  {'':42s} {'wall':>8s}    {'CPU':>8s}")

@@ -65,9 +65,28 @@ CASE_VARIABLES = {
 W_PER_N_MM_PER_S = 1e-3
 RPM_PER_RAD_S = 30.0 / np.pi
 UM_PER_MM = 1e3
-# written only when some case computed them (friction enabled)
-OPTIONAL_VARIABLES = {"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio",
-                      "roller_skew", "skew_sliding"}
+# written only where the configuration computes them (written_optional), then for every case (NaN
+# where a case has no result, DATA.md): the friction outputs with friction enabled, the skew outputs
+# with friction.skew enabled (roller_skew from the time-domain solver too, whose rollers always
+# have the skew degree of freedom)
+FRICTION_VARIABLES = frozenset({"torque", "torque_component", "power_loss", "srr", "film_thickness", "lambda_ratio"})
+SKEW_VARIABLES = frozenset({"roller_skew", "skew_sliding"})
+OPTIONAL_VARIABLES = FRICTION_VARIABLES | SKEW_VARIABLES
+
+
+def written_optional(friction, skew, dynamic=False):
+    """The optional variables (:data:`OPTIONAL_VARIABLES`) that a configuration writes.
+
+    friction: ``friction.enabled``; skew: ``friction.skew.enabled``; dynamic: ``solver=dynamic``
+    (its summary holds the rollers' skew, 0 without free skew). Decided by the configuration, not
+    by the results, so that a case without a result still has them (NaN), and a sweep's collector
+    knows what each job's file must hold (sim.api.sweep.result_problem).
+    """
+    if not friction:
+        return frozenset()
+    if skew:
+        return OPTIONAL_VARIABLES
+    return FRICTION_VARIABLES | ({"roller_skew"} if dynamic else frozenset())
 INTEGER_OR_BOOL = {"converged": bool, "edge_stress": bool, "iterations": np.int32, "unrested_rollers": np.int32}
 # design coordinates: name -> (units, long_name); the first ones are config inputs, the last three derived
 DESIGN_COORDS = {
@@ -253,7 +272,7 @@ def _design_parts(geometry):
     return parts
 
 
-def build_dataset(geometry, ops, results, config_yaml, settings):
+def build_dataset(geometry, ops, results, config_yaml, settings, optional):
     """Assemble the DATA.md Dataset of one bearing (design dim of length 1) over its cases.
 
     Every array is filled in numpy first and the Dataset is created once from Variables
@@ -269,14 +288,21 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
     config_yaml : str
         The full resolved config.
     settings : sim.api.simulation.SolverSettings
+    optional : set of str
+        The optional variables the configuration computes (:func:`written_optional`), written
+        for every case (NaN where a case has none).
+
+    A case without a result (``converged`` False) has its reason in the attribute
+    :data:`FAILED_CASES` (:func:`case_failure` reads it; the failure table of a batch,
+    :func:`build_batch_dataset`, and of a sweep, sim.api.sweep.collect, hold the same messages).
     """
     g = geometry
     design, rating = _design_parts(g)
     sizes = {"race": 2, "slice": g.n_slices, "roller": g.Z, "direction": 3, "component": len(COMPONENTS)}
     data = {}
     for name, (dims, units, long_name) in CASE_VARIABLES.items():
-        if name in OPTIONAL_VARIABLES and not any(name in res for res in results):
-            continue    # friction disabled: no torque variables, never placeholders
+        if name in OPTIONAL_VARIABLES and name not in optional:
+            continue    # not computed by this configuration (friction or skew disabled): no placeholders
         arr = _case_array(name, dims, results, sizes)
         data[name] = xr.Variable(("design", "case") + dims, arr, {"units": units, "long_name": long_name})
     for name, value in rating.items():
@@ -289,7 +315,36 @@ def build_dataset(geometry, ops, results, config_yaml, settings):
         units, long_name = DESIGN_COORDS[name]
         coords[name] = _var("design", [value], {"units": units, "long_name": long_name})
     title = f"{g.type} quasi-static load distribution and friction"
-    return _dataset(data, coords, indexes, provenance_attrs(title, config_yaml, settings))
+    attrs = provenance_attrs(title, config_yaml, settings)
+    failed = [f"{case_label(op.values())}: {failure_message(res)}" for op, res in zip(ops, results)
+              if not res["converged"]]
+    if failed:
+        attrs[FAILED_CASES] = "\n".join(failed)
+    return _dataset(data, coords, indexes, attrs)
+
+
+# Attribute of a Dataset with cases without a result: one line "<case_label>: <reason>" per case.
+FAILED_CASES = "failed_cases"
+
+
+def failure_message(res):
+    """Why a case of :func:`sim.api.simulation.case_results` has no result (``converged`` False)."""
+    return res.get("status") or f"converged = False after {int(res['iterations'])} ring iterations"
+
+
+def case_label(values):
+    """The case coordinates ``values`` (:data:`CASE_COORDS` order) as text, exactly (repr of each
+    float), the key of a line of the attribute :data:`FAILED_CASES`."""
+    return ", ".join(f"{name} = {float(v)!r}" for name, v in zip(CASE_COORDS, values))
+
+
+def case_failure(ds, values):
+    """The reason recorded in ``ds.attrs`` (:data:`FAILED_CASES`) for the case ``values``, or None."""
+    head = case_label(values) + ": "
+    for line in ds.attrs.get(FAILED_CASES, "").splitlines():
+        if line.startswith(head):
+            return line[len(head):]
+    return None
 
 
 # Time series of the dynamic solver (sim.api.dynamic_model.outputs): name -> (dims after design,
@@ -320,12 +375,12 @@ SERIES_SOURCE = {"roller_skew_t": "roller_skew", "roller_tilt_t": "roller_tilt",
                  "torque_component_t": "torque_component", "power_loss_t": "power_loss"}
 
 
-def build_dynamic_dataset(geometry, op, summary, series, config_yaml, settings, dynamic_settings):
+def build_dynamic_dataset(geometry, op, summary, series, config_yaml, settings, dynamic_settings, optional):
     """The Dataset of one dynamic run (one case): the steady-state summary in the layout of
-    :func:`build_dataset` (``converged`` = a steady state was found) plus the time series
-    (:data:`SERIES_VARIABLES`) on (design, case, time); ``series``: name -> array (time, ...)
-    in output units, ``time`` [s]."""
-    ds = build_dataset(geometry, [op], [summary], config_yaml, settings)
+    :func:`build_dataset` (``converged`` = a steady state was found; ``optional`` as there) plus
+    the time series (:data:`SERIES_VARIABLES`) on (design, case, time); ``series``: name -> array
+    (time, ...) in output units, ``time`` [s]."""
+    ds = build_dataset(geometry, [op], [summary], config_yaml, settings, optional)
     data = {}
     for name, (dims, units, long_name) in SERIES_VARIABLES.items():
         values = np.asarray(series[SERIES_SOURCE[name]])[None, None]
@@ -403,12 +458,16 @@ def write_netcdf_atomic(ds, path):
 def combine_cases(datasets, config_yaml):
     """One design's Dataset from Datasets of some of its cases (each with ``design`` 1), in order.
 
-    Variables that only some cases carry (friction outputs of converged cases) are NaN in the
-    others; attributes are those of the first Dataset with ``config`` set to ``config_yaml``.
+    Variables that only some cases carry are NaN in the others; attributes are those of the first
+    Dataset with ``config`` set to ``config_yaml``, and :data:`FAILED_CASES` the lines of all.
     """
     ds = xr.concat(datasets, dim="case", data_vars="minimal", coords="minimal", compat="override",
                    join="outer", fill_value=FILL_VALUES, combine_attrs="override")
     ds.attrs["config"] = config_yaml
+    failed = "\n".join(part.attrs[FAILED_CASES] for part in datasets if FAILED_CASES in part.attrs)
+    ds.attrs.pop(FAILED_CASES, None)
+    if failed:
+        ds.attrs[FAILED_CASES] = failed
     return ds
 
 
@@ -527,6 +586,7 @@ class DesignResult(NamedTuple):
     results: list
     config_yaml: str
     settings: object
+    optional: frozenset     # the optional variables its configuration computes (written_optional)
 
 
 class DesignFailure(NamedTuple):
@@ -581,7 +641,7 @@ def build_batch_dataset(designs):
         if isinstance(d, DesignFailure):
             names.append("converged")
             continue
-        names += [n for n in CASE_VARIABLES if n not in OPTIONAL_VARIABLES or any(n in r for r in d.results)]
+        names += [n for n in CASE_VARIABLES if n not in OPTIONAL_VARIABLES or n in d.optional]
         names += ["C", "C0"]
     names = list(dict.fromkeys(names))
     arrays = {}
@@ -609,9 +669,7 @@ def build_batch_dataset(designs):
                 value = np.asarray(value)
                 target[(i, c) + tuple(slice(0, n) for n in value.shape)] = value
             if not res["converged"]:
-                rows.append({"design": i, "case": c, "reason": "not converged",
-                             "message": res.get("status") or
-                             f"converged = False after {int(res['iterations'])} ring iterations"})
+                rows.append({"design": i, "case": c, "reason": "not converged", "message": failure_message(res)})
     data = {}
     for name in names:
         dims, units, long_name = CASE_VARIABLES.get(name) or ((), None, None)

@@ -25,6 +25,7 @@ from hydra.core.hydra_config import HydraConfig
 from hydra.types import RunMode
 from omegaconf import DictConfig
 
+from sim import io
 from sim.api.cli import PROJECT_ERRORS, refuse
 from sim.api.sweep import NEW_RUN_DIRS, WriteError, remove_stale_files, run_cases, run_job, write_result
 
@@ -94,7 +95,8 @@ def main(cfg: DictConfig) -> None:
     print(summary(ds))
     print(f"written: {out} ({n['cases']} cases, {n['cached']} from the cache)")
     if not bool(ds.converged.all()):
-        print("some cases did not converge (written with converged = False)", file=sys.stderr)
+        print("some cases did not converge (written with converged = False):\n"
+              + ds.attrs.get(io.FAILED_CASES, ""), file=sys.stderr)
         raise SystemExit(1)
 
 

@@ -34,7 +34,8 @@ from sim.api.processes import worker_pool
 from sim.api.schema import validate
 from sim.errors import InputError
 from sim.geometry import Geometry
-from sim.io import DesignFailure, DesignResult, build_batch_dataset, build_dataset, build_dynamic_dataset
+from sim.io import (DesignFailure, DesignResult, build_batch_dataset, build_dataset, build_dynamic_dataset,
+                    written_optional)
 from sim.physics.lubricant import Lubricant
 
 CACHE_SIZE = 128                      # configurations whose YAML and models are kept
@@ -85,7 +86,12 @@ def solve_case(model, friction, op, output_cfg):
     if fr is None:
         return case_results(model, op, raw, output_cfg)
     res = case_results(model, op, raw, output_cfg)
-    if not (res["converged"] and fr.pop("friction_converged") and fr.pop("coupling_converged")):
+    kinematics_converged, coupling_converged = fr.pop("friction_converged"), fr.pop("coupling_converged")
+    if not (res["converged"] and kinematics_converged and coupling_converged):
+        if res["converged"]:
+            res["status"] = ("roller and cage speeds: no traction balance within friction.max_iterations"
+                             if not kinematics_converged else
+                             "friction loads and load distribution not settled within friction.load_coupling_passes")
         return ({key: res[key] for key in ("iterations", "wall_time", "P", "P0", "unrested_rollers", "status") if key in res}
                 | {"converged": False})
     fr.pop("roller_loads")
@@ -169,8 +175,15 @@ def clear_caches():
     _VALID.clear()
 
 
+def optional_outputs(friction, dynamic=False):
+    """The optional variables (sim.io.written_optional) of a configuration whose friction model
+    is ``friction`` (None: friction disabled)."""
+    return written_optional(friction is not None, friction is not None and friction.par.skew, dynamic)
+
+
 def _solve_design(cfg, case_slice=slice(None), plain=None):
-    """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config)."""
+    """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config,
+    optional variables)."""
     plain = resolved(cfg) if plain is None else plain
     model, friction = build_models(cfg, plain)   # validates first
     ops = operating_points(plain["load"])
@@ -178,7 +191,7 @@ def _solve_design(cfg, case_slice=slice(None), plain=None):
         model.check_limits(op)
     output = plain["output"]
     results = [solve_case(model, friction, op, output) for op in ops[case_slice]]
-    return model, ops, results, plain
+    return model, ops, results, plain, optional_outputs(friction)
 
 
 def simulate(cfg):
@@ -197,8 +210,8 @@ def simulate(cfg):
     plain = resolved(cfg)
     if plain["solver"]["name"] == "dynamic":
         return _simulate_dynamic(cfg, plain)
-    model, ops, results, plain = _solve_design(cfg, plain=plain)
-    return build_dataset(model.geometry, ops, results, config_yaml(cfg, plain), model.settings)
+    model, ops, results, plain, optional = _solve_design(cfg, plain=plain)
+    return build_dataset(model.geometry, ops, results, config_yaml(cfg, plain), model.settings, optional)
 
 
 def _simulate_dynamic(cfg, plain):
@@ -219,17 +232,18 @@ def _simulate_dynamic(cfg, plain):
     dcase = dynamic_model.prepare(model, friction, op, dyn)
     integ = dynamic_model.run(dcase)
     summary, series = dynamic_model.outputs(model, op, dcase, integ, time.perf_counter() - t0, plain["output"])
-    return build_dynamic_dataset(model.geometry, op, summary, series, config_yaml(cfg, plain), model.settings, dyn)
+    return build_dynamic_dataset(model.geometry, op, summary, series, config_yaml(cfg, plain), model.settings, dyn,
+                                 optional_outputs(friction, dynamic=True))
 
 
 # ------------------------------------------------------------------ many designs in worker processes
 def _run(cfg, plain, start, stop, with_yaml):
     """Cases ``start:stop`` of one design (``plain``: its :func:`resolved` config): ("ok",
-    (geometry, settings, results, YAML or None)), or ("error", message): an exception fails the
-    design, as it fails :func:`simulate`."""
+    (geometry, settings, results, YAML or None, optional variables)), or ("error", message): an
+    exception fails the design, as it fails :func:`simulate`."""
     try:
-        model, _, results, plain = _solve_design(cfg, slice(start, stop), plain)
-        return "ok", (model.geometry, model.settings, results, config_yaml(cfg, plain) if with_yaml else None)
+        model, _, results, plain, optional = _solve_design(cfg, slice(start, stop), plain)
+        return "ok", (model.geometry, model.settings, results, config_yaml(cfg, plain) if with_yaml else None, optional)
     except Exception as exc:
         return "error", f"{type(exc).__name__}: {exc}"
 
@@ -379,7 +393,7 @@ def simulate_batch(cfgs, workers=None):
             bearing = (plains[d] or {}).get("bearing") or {}
             designs.append(DesignFailure(bearing, ops[d], _provenance_text(cfg, plains[d]), failed[d]))
         else:
-            geometry, settings, _, text = parts[d][0]
+            geometry, settings, _, text, optional = parts[d][0]
             designs.append(DesignResult(geometry, ops[d], [res for part in parts[d] for res in part[2]], text,
-                                        settings))
+                                        settings, optional))
     return build_batch_dataset(designs)

@@ -796,8 +796,9 @@ def result_problem(ds, cfg):
     """Why a job's result Dataset is not the whole result of its config (DATA.md), or "".
 
     Checks what the collector relies on: one design, the job's cases exactly, every variable
-    that sim.io always writes (the friction ones when friction is enabled and a case converged)
-    with its dimensions, and finite key results wherever a case is marked converged.
+    that sim.io writes for the job's config (the optional ones of sim.io.written_optional: friction
+    and skew outputs as the config enables them) with its dimensions, and finite key results
+    wherever a case is marked converged.
     """
     if ds.sizes.get("design") != 1 or "case" not in ds.sizes:
         return f"dimensions {dict(ds.sizes)}: not one design over cases"
@@ -811,9 +812,10 @@ def result_problem(ds, cfg):
     if "converged" not in ds:
         return "no variable converged"
     conv = np.asarray(ds["converged"].values, dtype=bool)
-    names = [n for n in io.CASE_VARIABLES if n not in io.OPTIONAL_VARIABLES]
-    if bool(OmegaConf.select(cfg, "friction.enabled")) and conv.any():
-        names += [n for n in io.CASE_VARIABLES if n in io.OPTIONAL_VARIABLES]
+    optional = io.written_optional(bool(OmegaConf.select(cfg, "friction.enabled")),
+                                   bool(OmegaConf.select(cfg, "friction.skew.enabled")),
+                                   OmegaConf.select(cfg, "solver.name") == "dynamic")
+    names = [n for n in io.CASE_VARIABLES if n not in io.OPTIONAL_VARIABLES or n in optional]
     expected = {n: ("design", "case") + io.CASE_VARIABLES[n][0] for n in names} | {"C": ("design",), "C0": ("design",)}
     absent = [n for n in expected if n not in ds.data_vars]
     if absent:
@@ -933,7 +935,8 @@ def _swept_coords(jobs, configs, designs, datasets):
 def _failure_rows(ds, jobs, configs, designs, outcomes):
     """One row per point of ``ds`` without a valid result: error, not converged or missing."""
     design_of = {i: d for d, members in enumerate(designs) for i in members}
-    case_index = {t: c for c, t in enumerate(_case_tuples(ds))}
+    case_values = _case_tuples(ds)
+    case_index = {t: c for c, t in enumerate(case_values)}
     rows = []
     for i, (job, (job_ds, reason, message)) in enumerate(zip(jobs, outcomes)):
         d = design_of[i]
@@ -944,7 +947,8 @@ def _failure_rows(ds, jobs, configs, designs, outcomes):
                 if bool(ds.converged.values[d, c]):
                     continue
                 reason = "not converged"
-                message = f"converged = False after {int(ds.iterations.values[d, c])} ring iterations"
+                message = (io.case_failure(job_ds, case_values[c])
+                           or f"converged = False after {int(ds.iterations.values[d, c])} ring iterations")
             rows.append({"design": d, "case": c, "job": job["job"], "overrides": " ".join(job["overrides"]),
                          "reason": reason, "message": message})
     return rows

@@ -81,3 +81,44 @@ def test_unlike_designs_combine():
     assert np.isnan(ds.PCR.values[0]) and ds.PCR.values[1] == 100.0
     assert ds.x_slice.dims == ("design", "slice")
     np.testing.assert_array_equal(ds.pressure.isel(design=1, case=1), tsrb.pressure.isel(design=0, case=0))
+
+
+def test_sweep_with_friction_collects_its_converged_jobs_and_reports_the_refused_one(tmp_path):
+    """A multirun as the README runs it, friction on (the default; the other sweep tests switch it
+    off): every converged job's file holds what sim.io writes for its config, so the collector
+    merges it (before, it called every such job "damaged": it required the skew outputs, which only
+    friction.skew writes). A case beyond the static limit after the solve (tsrb_reference at 80 kN:
+    past ISO 76's 4000 MPa, tests/published/test_static_capacity.py) is a point without a result,
+    with its torque variables NaN (DATA.md) and its reason in the failure table."""
+    sweep = tmp_path / "sweep"
+    cmd = [sys.executable, "-m", "sim.run", "--multirun", "bearing=tsrb_reference", "load.Fa=3000,80000", "load.Fr=0",
+           "solver.n_slices=8", f"output.cache_dir={tmp_path / 'cache'}", f"hydra.sweep.dir={sweep}"]
+    out = subprocess.run(cmd, cwd=REPO, capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:]
+    ds = xr.load_dataset(sweep / "sweep.nc")
+    assert list(ds.Fa.values) == [3000.0, 80000.0]
+    assert list(ds.converged.values[0]) == [True, False]
+    assert np.isfinite(ds.torque.values[0, 0]) and np.isnan(ds.torque.values[0, 1])
+    assert np.isfinite(ds.torque_component.values[0, 0]).all() and np.isnan(ds.power_loss.values[0, 1])
+    assert "roller_skew" not in ds            # friction.skew off: no skew outputs, no placeholders
+    assert list(ds.failed_reason.values) == ["not converged"] and list(ds.failed_case.values) == [1]
+    assert "static safety" in str(ds.failed_message.values[0])
+    if CHECKER.exists():
+        chk = subprocess.run([sys.executable, str(CHECKER), str(sweep / "sweep.nc")], capture_output=True, text=True)
+        assert chk.returncode == 0, chk.stdout
+
+
+def test_a_case_without_result_keeps_the_variables_of_its_config_and_says_why():
+    """sim.simulate of one case that has no result, friction on: the friction outputs are there,
+    NaN (DATA.md: "its data variables NaN"; they were left out, so ``ds.torque`` raised), and the
+    reason is in the attribute failed_cases."""
+    ds = sim.simulate(sim.load_config(["bearing=tsrb_reference", "load.Fa=[3000,80000]", "load.Fr=0",
+                                       "solver.n_slices=8"]))
+    assert list(ds.converged.values[0]) == [True, False]
+    for name in io.FRICTION_VARIABLES:    # srr and film_thickness are NaN on unloaded slices (between the contacts)
+        values = ds[name].values[0]
+        assert np.isfinite(values[0]).any() and np.isnan(values[1]).all(), name
+    assert np.isfinite(ds.torque_component.values[0, 0]).all() and np.isfinite(ds.lambda_ratio.values[0, 0]).all()
+    assert ds.attrs["failed_cases"].startswith("Fa = 80000.0, Fr = 0.0, speed = 2000.0, tilt = 0.0, oil_temperature = 55.0: pmax = ") and "static safety" in ds.attrs["failed_cases"]
+    assert "failed_cases" not in sim.simulate(sim.load_config(["bearing=tsrb_reference", "load.Fa=3000", "load.Fr=0",
+                                                               "solver.n_slices=8"])).attrs
