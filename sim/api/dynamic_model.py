@@ -14,6 +14,7 @@ import numpy as np
 
 from sim.api.bearing_model import case_results
 from sim.api.friction_model import coupled_solution, film_outputs
+from sim.errors import InputError
 from sim.io import RPM_PER_RAD_S, W_PER_N_MM_PER_S
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.solvers.dynamic import (A_TIN, A_TOUT, ETA, HR, NCAGE, NRING, NS, PHI, PSI,
@@ -85,8 +86,17 @@ def quasi_static_start(model, friction, op):
     do not converge. A friction-load fixed point that does not settle (``coupling_converged``
     False: skewed rollers flipping between their pocket walls from pass to pass) still gives the
     start, its last pass: the start is an initial state, and the run's own steady-state detector
-    decides (such a run reports no steady state, README)."""
-    raw, fr = coupled_solution(model, friction, op)
+    decides (such a run reports no steady state, README). InputError, before any friction or time
+    step, when the load solution is beyond the static limit (BearingModel.static_limit): the
+    elastic contact model does not hold there, and the run would end refused by case_results after
+    its whole integration."""
+    first = model.solve(op)
+    if first["converged"]:
+        status = model.static_limit(first)[1]
+        if status is not None:
+            raise InputError(f"solver=dynamic at load.Fa = {op.Fa:g} N, load.Fr = {op.Fr:g} N, tilt "
+                             f"{op.tilt_deg:g} deg: {status}")
+    raw, fr = coupled_solution(model, friction, op, first)
     if fr is None or not (raw["converged"] and fr["friction_converged"]):
         raise RuntimeError(f"the quasi-static start of the dynamic run did not converge at {op}")
     return raw, fr

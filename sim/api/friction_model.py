@@ -224,7 +224,8 @@ class FrictionModel:
 
         Returns a dict of DATA.md outputs in output units (torque N mm, power W, film um,
         cage speed rpm; with ``friction.skew`` also ``roller_skew`` (Z,) deg and ``skew_sliding``
-        N mm), ``friction_converged``, the friction ``roller_loads`` (Z, 3) [N, N, N mm] and their
+        N mm), ``friction_converged`` and ``friction_failure`` (why not, or None), the friction
+        ``roller_loads`` (Z, 3) [N, N, N mm] and their
         reaction ``ring_loads`` (Z, 3) [N] (:meth:`sim.api.bearing_model.BearingModel.solve`), and
         ``kinematics`` (omega_c [rad/s], omega_R (Z,) [rad/s], psi (Z,) [rad],
         :data:`sim.solvers.kinematics.KinematicJacobian`, and with free rollers their orbit speeds
@@ -331,8 +332,16 @@ class FrictionModel:
             wR[:] = 0.0
         else:
             power_loss = float(power.sum()) * W_PER_N_MM_PER_S
+        if film_lost:
+            failure = ("no EHL film at a loaded contact: Gupta's inlet-heating factor is 0 there (thermal loading "
+                       "far beyond its range: the oil far too viscous for the speed)")
+        elif not converged:
+            failure = "roller and cage speeds: no traction balance within friction.max_iterations"
+        else:
+            failure = None
         return {
             "friction_converged": bool(converged) and not film_lost,
+            "friction_failure": failure,
             "torque": torque,
             "torque_component": components,
             "power_loss": power_loss,

@@ -87,11 +87,11 @@ def solve_case(model, friction, op, output_cfg):
         return case_results(model, op, raw, output_cfg)
     res = case_results(model, op, raw, output_cfg)
     kinematics_converged, coupling_converged = fr.pop("friction_converged"), fr.pop("coupling_converged")
+    failure = fr.pop("friction_failure")
     if not (res["converged"] and kinematics_converged and coupling_converged):
-        if res["converged"]:
-            res["status"] = ("roller and cage speeds: no traction balance within friction.max_iterations"
-                             if not kinematics_converged else
-                             "friction loads and load distribution not settled within friction.load_coupling_passes")
+        if res["converged"]:    # the load solve stands: the friction failed (else its iterations say why)
+            res["status"] = failure or ("friction loads and load distribution not settled within "
+                                        "friction.load_coupling_passes")
         return ({key: res[key] for key in ("iterations", "wall_time", "P", "P0", "unrested_rollers", "status") if key in res}
                 | {"converged": False})
     fr.pop("roller_loads")

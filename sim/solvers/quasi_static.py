@@ -132,8 +132,15 @@ SolveReport = namedtuple("SolveReport", ["converged", "iterations", "residual_ax
 
 # Load control of one roller solve: Fa_share, the roller's share Fa / Z of the axial load [N]
 # with the ring's axial displacement a fourth unknown (axisymmetric case), 0 for a fixed ring;
-# ring_scale, the length scale of the ring displacement [mm] (its start estimate).
-LoadControl = namedtuple("LoadControl", ["Fa_share", "ring_scale"])
+# ring_scale, the length scale of the ring displacement [mm] (its start estimate); force_floor,
+# the roller's absolute force tolerance at the least [N]: its share of the ring's final tolerance,
+# roller_tolerance_ratio x tolerance x max(Fa, Fr) / Z (solve_bearing), so that the rollers'
+# residuals together stay 1 / roller_tolerance_ratio below the ring's. Without it a roller that
+# carries almost nothing (a TSRB roller at a load zone's edge, 0.3 N of a 3.7 kN largest load) was
+# to balance to 1e-10 of its own load, 3e-11 N, below the round-off of its contact forces (its
+# stiffness times the double-precision spacing of its pose, some 3e-10 N): it stalled, and the
+# ring with it (pinion TSRB at 8.03 / 11.58 kN, 60 rpm, with the friction loads: session 29).
+LoadControl = namedtuple("LoadControl", ["Fa_share", "ring_scale", "force_floor"])
 
 # Work arrays of solve_roller (allocated once per bearing solve): the trial contact state and
 # ring; the residuals at the current, trial and best extended state; the step; the Jacobian and
@@ -416,8 +423,9 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
         [N], moment about u' x v' (positive turning u' towards v') [N mm].
     problem : QuasiStaticProblem
     tol : float
-        Relative force tolerance of the roller (of its contact and body loads); under load
-        control the ring residual is held to settings.tolerance x Fa_share.
+        Relative force tolerance of the roller (of its contact and body loads), with the
+        absolute floor ``control.force_floor``; under load control the ring residual is held to
+        settings.tolerance x Fa_share.
     control : LoadControl
     state : sim.physics.roller_contact.RollerContact
         The roller: pose start in, result out; q, active warm start in; the contact state of the
@@ -535,7 +543,7 @@ def solve_roller(ring, phi, cpsi, ext, problem, tol, control, state, work):
                 continue
         err = _roller_residual(f, pose[2], alpha, Lscale, body, ext, R)
         scale = Q[0] + Q[1] + Q[2] + abs(body.centrifugal) + abs(ext[0]) + abs(ext[1]) + abs(ext[2]) / Lscale
-        done = err <= tol * scale and ok
+        done = err <= max(tol * scale, control.force_floor) and ok
         merit = err
         if lc:
             R[3] = Fa_share + f[3]
@@ -881,7 +889,7 @@ def solve_bearing(Fa, Fr, Fy, tilt, ext, problem, ring0, rollers, warm):
         Fa_share = Fa / Z
         ring[1] = 0.0
         roller_tol = roller_tol_final
-    control = LoadControl(Fa_share, ring_scale)
+    control = LoadControl(Fa_share, ring_scale, roller_tol_final * Fscale / Z)
     for it_ring in range(max_iter):
         Fres[0] = Fa
         Fres[1] = Fr

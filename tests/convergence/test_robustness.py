@@ -203,7 +203,7 @@ def test_roller_kernel_reports_its_status_honestly(model_for):
                           np.zeros((4, 4)), np.zeros((4, 4)), np.zeros(4))
         state = empty_roller_contact(n)
         state.pose[:] = [0.0, 0.5 * 0.04 * np.sin(g.alpha), 0.0]
-        st, its, nev = solve_roller(ring, 0.0, 1.0, np.zeros(3), problem, 1e-10, LoadControl(0.0, 0.04), state, work)
+        st, its, nev = solve_roller(ring, 0.0, 1.0, np.zeros(3), problem, 1e-10, LoadControl(0.0, 0.04, 0.0), state, work)
         assert st == expected and np.all(np.isfinite(state.pose))
         check = empty_roller_contact(n)
         check.pose[:] = state.pose

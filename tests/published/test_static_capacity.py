@@ -25,6 +25,7 @@ import numpy as np
 import pytest
 
 import sim
+from sim.api.bearing_model import OperatingPoint
 from sim.api.simulation import build_models
 from sim.physics import ratings
 
@@ -87,10 +88,22 @@ def test_a_solved_case_beyond_the_static_limit_is_no_result(caplog):
     assert not bool(ds.converged)
     assert np.isnan(float(ds.pmax.max())) and np.isnan(float(ds.static_safety_factor))
     batch = simulate_batch([cfg], workers=1)
-    for message in (caplog.text, str(batch.failed_message.values[0])):
+    for message in (caplog.text, str(batch.failed_message.values[0]), ds.attrs["failed_cases"]):
         for fragment in ("pmax = ", "static safety", "solver.max_static_load_ratio", "ISO 76"):
             assert fragment in message, (fragment, message)
     raised = sim.simulate(sim.load_config(["bearing=tsrb_reference", *NO_FRICTION, *load,
                                            "solver.max_static_load_ratio=4"])).isel(design=0, case=0)
     assert bool(raised.converged)
     assert 0.25 < float(raised.static_safety_factor) < 1.0
+
+
+def test_the_time_domain_solver_refuses_a_case_beyond_the_static_limit_before_it_runs():
+    """solver=dynamic at tsrb_reference's case above: refused with the static limit's reason from the
+    quasi-static start's first load solve (it ran its whole integration before, to be refused by
+    case_results at its end)."""
+    from sim.api.dynamic_model import quasi_static_start
+    from sim.errors import InputError
+
+    model, friction = build_models(sim.load_config(["bearing=tsrb_reference"]))
+    with pytest.raises(InputError, match=r"solver=dynamic at load.Fa = .*static safety s0 = .*ISO 76"):
+        quasi_static_start(model, friction, OperatingPoint(0.6 * model.axial_static_limit(), 0.0, 2000.0, 0.0, 55.0))

@@ -89,3 +89,41 @@ def test_continuation_with_unequal_ring_loads_runs():
     assert raw["solver_info"]["continuation_steps"] > 1
     full = build_model(sim.load_config(["bearing=trb_32208"])).solve(op, ring_loads=ring_loads)
     assert full["converged"] and full["ring_load"][2] != 0.0
+
+
+@pytest.mark.parametrize("component", [0, 1, 2])
+def test_a_tiny_load_on_one_roller_changes_the_load_solution_continuously(component):
+    """Pinion TSRB at 8.03 / 11.58 kN, 60 rpm (session 28): with its friction loads the load solve
+    did not converge, and neither did it with 1e-3 N on the most loaded roller alone (3.7 kN), while
+    0 and 1 N converged. A roller at the load zone's edge carries 0.27 N there, and its own
+    tolerance (1e-10 of its load, 3e-11 N) lay below the round-off of its contact forces; its solve
+    stalled and the ring with it. The rollers' tolerance now has the floor of their share of the
+    ring's (sim.solvers.quasi_static.LoadControl). Each 1e-3 N load (along u', v', or as 1e-3 N mm
+    about -e_t) must converge and move the ring by no more than such a load can: 1e-3 N over the
+    ring's stiffness, well below 1e-6 of its displacement."""
+    from sim.api.bearing_model import OperatingPoint
+    from sim.api.simulation import build_model
+
+    model = build_model(sim.load_config(["bearing=tsrb_pinion", "lubricant=pinion_oil"]))
+    op = OperatingPoint(8030.0, 11580.0, 60.0, 0.0, 55.0)
+    base = model.solve(op)
+    assert base["converged"]
+    loads = np.zeros((model.geometry.Z, 3))
+    loads[int(np.argmax(base["Q"].sum(axis=1))), component] = 1e-3
+    nudged = model.solve(op, roller_loads=loads)
+    assert nudged["converged"]
+    np.testing.assert_allclose(nudged["ring"], base["ring"], rtol=0, atol=1e-6 * np.abs(base["ring"]).max())
+
+
+def test_slow_pinion_case_with_its_friction_loads_converges():
+    """The same case through solve_case (its friction loads fed back to the load solve, which
+    stalled before): converged, a positive torque whose breakdown sums to it."""
+    from sim.api.bearing_model import OperatingPoint
+    from sim.api.simulation import build_friction, build_model, solve_case
+
+    cfg = sim.load_config(["bearing=tsrb_pinion", "lubricant=pinion_oil"])
+    model = build_model(cfg)
+    res = solve_case(model, build_friction(cfg, model), OperatingPoint(8030.0, 11580.0, 60.0, 0.0, 55.0), cfg.output)
+    assert res["converged"], res.get("status")
+    assert res["torque"] > 0.0
+    np.testing.assert_allclose(res["torque_component"].sum(), res["torque"], rtol=1e-12)
