@@ -10,8 +10,14 @@ FAST = ["friction.enabled=false", "solver.n_slices=8"]
 SWEEP = ["bearing.PCR=8,90,110", "load.Fa=3000,5000", "load.Fr=[0,2000]"]
 
 
-def multirun(args, sweep_dir, cache_dir, **kwargs):
-    """``python -m sim.run --multirun`` with the fast settings, into ``sweep_dir`` with its own cache."""
-    cmd = [sys.executable, "-m", "sim.run", "--multirun", *args, *FAST, f"output.cache_dir={cache_dir}",
-           f"hydra.sweep.dir={sweep_dir}"]
-    return subprocess.run(cmd, cwd=REPO, capture_output=True, text=True, timeout=300, **kwargs)
+# A sweep with friction on, the default (tsrb_reference, 8 slices): a job with a result and one whose
+# case is beyond the static limit after the solve (80 kN: pmax ~5 GPa, tests/published/test_static_capacity.py).
+FRICTION_SWEEP = ["bearing=tsrb_reference", "load.Fa=3000,80000", "load.Fr=0", "solver.n_slices=8"]
+
+
+def multirun(args, sweep_dir, cache_dir, fast=True, **kwargs):
+    """``python -m sim.run --multirun`` with the fast settings (``fast``: friction off), into
+    ``sweep_dir`` with its own cache."""
+    cmd = [sys.executable, "-m", "sim.run", "--multirun", *args, *(FAST if fast else []),
+           f"output.cache_dir={cache_dir}", f"hydra.sweep.dir={sweep_dir}"]
+    return subprocess.run(cmd, cwd=REPO, capture_output=True, text=True, timeout=600, **kwargs)

@@ -83,18 +83,14 @@ def test_unlike_designs_combine():
     np.testing.assert_array_equal(ds.pressure.isel(design=1, case=1), tsrb.pressure.isel(design=0, case=0))
 
 
-def test_sweep_with_friction_collects_its_converged_jobs_and_reports_the_refused_one(tmp_path):
+def test_sweep_with_friction_collects_its_converged_jobs_and_reports_the_refused_one(friction_sweep):
     """A multirun as the README runs it, friction on (the default; the other sweep tests switch it
     off): every converged job's file holds what sim.io writes for its config, so the collector
     merges it (before, it called every such job "damaged": it required the skew outputs, which only
     friction.skew writes). A case beyond the static limit after the solve (tsrb_reference at 80 kN:
     past ISO 76's 4000 MPa, tests/published/test_static_capacity.py) is a point without a result,
     with its torque variables NaN (DATA.md) and its reason in the failure table."""
-    sweep = tmp_path / "sweep"
-    cmd = [sys.executable, "-m", "sim.run", "--multirun", "bearing=tsrb_reference", "load.Fa=3000,80000", "load.Fr=0",
-           "solver.n_slices=8", f"output.cache_dir={tmp_path / 'cache'}", f"hydra.sweep.dir={sweep}"]
-    out = subprocess.run(cmd, cwd=REPO, capture_output=True, text=True, timeout=600)
-    assert out.returncode == 0, out.stderr[-3000:]
+    sweep = friction_sweep.dir
     ds = xr.load_dataset(sweep / "sweep.nc")
     assert list(ds.Fa.values) == [3000.0, 80000.0]
     assert list(ds.converged.values[0]) == [True, False]
