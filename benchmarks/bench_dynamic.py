@@ -55,6 +55,12 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   21.1 s (1.74 ms); the same work (11743 rhs, 469 Jacobians; 5321, 195). No change from sessions 27-28; the
   machine ran this benchmark slower than when 6e00aa4 was measured above (51-54 s): the TRB 32208 misses
   the 60 s target here.
+- 2026-11-29 (session 29), de9d59d, one run each on the idle machine (load 0.0-0.8): TRB 32208 70.1 s CPU
+  (7.01 s/rev; rhs 1.53 ms at the start state), pinion TSRB 18.3 s (1.83 s/rev, within the 20 s goal; rhs
+  1.54 ms); the same work as session 28 (11743 rhs, 469 Jacobians; 5321, 195) and the same end torques
+  (746.5, 4974.9 N mm). At the state after one revolution the TRB's rhs costs 2.86 ms: film 1.05 ms (its
+  thermal viscosity factor 0.63), tractions 1.8; over 4 revolutions rhs 58 %, Jacobians 27 %, LU and
+  scipy 10 % (cProfile).
 
 Run from the repository root::
 
