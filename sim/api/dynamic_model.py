@@ -90,13 +90,10 @@ def quasi_static_start(model, friction, op):
     step, when the load solution is beyond the static limit (BearingModel.static_limit): the
     elastic contact model does not hold there, and the run would end refused by case_results after
     its whole integration."""
-    first = model.solve(op)
-    if first["converged"]:
-        status = model.static_limit(first)[1]
-        if status is not None:
-            raise InputError(f"solver=dynamic at load.Fa = {op.Fa:g} N, load.Fr = {op.Fr:g} N, tilt "
-                             f"{op.tilt_deg:g} deg: {status}")
-    raw, fr = coupled_solution(model, friction, op, first)
+    raw, fr = coupled_solution(model, friction, op)
+    if fr is None and raw["converged"]:         # beyond the static limit (coupled_solution)
+        raise InputError(f"solver=dynamic at load.Fa = {op.Fa:g} N, load.Fr = {op.Fr:g} N, tilt "
+                         f"{op.tilt_deg:g} deg: {model.static_limit(raw)[1]}")
     if fr is None or not (raw["converged"] and fr["friction_converged"]):
         raise RuntimeError(f"the quasi-static start of the dynamic run did not converge at {op}")
     return raw, fr

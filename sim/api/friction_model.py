@@ -340,7 +340,7 @@ class FrictionModel:
         else:
             failure = None
         return {
-            "friction_converged": bool(converged) and not film_lost,
+            "friction_converged": failure is None,
             "friction_failure": failure,
             "torque": torque,
             "torque_component": components,
@@ -390,7 +390,7 @@ def film_outputs(case, load, wc, wR, wi):
     return srr, film_um, lam
 
 
-def coupled_solution(model, friction, op, first=None):
+def coupled_solution(model, friction, op):
     """Load distribution and friction of one case with the friction loads fed back: the friction
     loads on the rollers and their reaction on the inner ring (:meth:`FrictionModel.evaluate`:
     ``roller_loads``, ``ring_loads``) enter :meth:`sim.api.bearing_model.BearingModel.solve`, whose
@@ -417,7 +417,7 @@ def coupled_solution(model, friction, op, first=None):
     ``fr["coupling_converged"]`` whether the fixed point settled (it may not: a skewed TSRB whose
     skew moment changes sign with the loads its own lateral tractions cause flips its rollers
     between the pocket walls from pass to pass). ``fr`` is None when the first solve did not
-    converge; ``fr["friction_converged"]`` is False when a kinematic solve or a load solve with the
+    converge or is beyond the static limit (below); ``fr["friction_converged"]`` is False when a kinematic solve or a load solve with the
     friction loads did not converge (a pass's kinematic solve starts from the previous pass's
     speeds and Jacobian and, where that fails, once more from rolling kinematics).
 
@@ -432,11 +432,12 @@ def coupled_solution(model, friction, op, first=None):
     loads alone, which settles there in 2 passes (5880.8 N mm). It is not run for a rigid cage, whose
     passes carry only speeds and a Jacobian between them, whose solve has one solution.
 
-    ``first``: ``model.solve(op)`` when the caller has it (the first solve, without friction loads;
-    both runs start from it).
+    Both runs start from the first solve (without friction loads). Where that one did not converge,
+    or its contact is already beyond the static limit (:meth:`BearingModel.static_limit`; the
+    friction loads move pmax by ~1e-5), no friction is computed: (that solve, None).
     """
-    raw = model.solve(op) if first is None else first
-    if not raw["converged"]:
+    raw = model.solve(op)
+    if not raw["converged"] or model.static_limit(raw)[1] is not None:
         return raw, None
     # With skew the friction loads of this first evaluation change the load distribution by
     # 2e-4 - 1e-3 of the roller loads (conf/friction/default.yaml, load_coupling_tolerance), so at

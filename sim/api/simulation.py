@@ -77,13 +77,10 @@ def solve_case(model, friction, op, output_cfg):
     kinematics converged; otherwise only its status and the load-derived P, P0 are kept.
     """
     t0 = time.perf_counter()
-    first = model.solve(op)
-    if friction is None or (first["converged"] and model.static_limit(first)[1] is not None):
-        # beyond the static limit already without the friction loads (they move pmax by ~1e-5): no
-        # friction to compute, case_results reports why
-        return case_results(model, op, first, output_cfg)
-    raw, fr = coupled_solution(model, friction, op, first)
-    if fr is None:
+    if friction is None:
+        return case_results(model, op, model.solve(op), output_cfg)
+    raw, fr = coupled_solution(model, friction, op)
+    if fr is None:      # no load solution, or beyond the static limit: case_results reports why
         return case_results(model, op, raw, output_cfg)
     res = case_results(model, op, raw, output_cfg)
     kinematics_converged, coupling_converged = fr.pop("friction_converged"), fr.pop("coupling_converged")
