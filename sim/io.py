@@ -379,8 +379,12 @@ def build_dynamic_dataset(geometry, op, summary, series, config_yaml, settings, 
     """The Dataset of one dynamic run (one case): the steady-state summary in the layout of
     :func:`build_dataset` (``converged`` = a steady state was found; ``optional`` as there) plus
     the time series (:data:`SERIES_VARIABLES`) on (design, case, time); ``series``: name -> array
-    (time, ...) in output units, ``time`` [s]."""
+    (time, ...) in output units, ``time`` [s]; None for a run that never started (its quasi-static
+    start did not converge): every series then has no time step."""
     ds = build_dataset(geometry, [op], [summary], config_yaml, settings, optional)
+    if series is None:
+        series = {"time": np.zeros(0)} | {SERIES_SOURCE[name]: np.zeros((0,) + tuple(ds.sizes[d] for d in dims))
+                                          for name, (dims, _, _) in SERIES_VARIABLES.items()}
     data = {}
     for name, (dims, units, long_name) in SERIES_VARIABLES.items():
         values = np.asarray(series[SERIES_SOURCE[name]])[None, None]

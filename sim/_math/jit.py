@@ -15,9 +15,19 @@ the package starts a fresh cache, and two versions of the package never share on
 is ``$NUMBA_CACHE_DIR/sim-<hash>`` when the user set that variable, else
 ``sim/__pycache__/numba/sim-<hash>`` beside the sources (numba's own default place); where
 that is not writable, numba falls back to its user-wide cache as usual.
+
+Old versions' folders. Each version of ``sim/`` leaves a folder of ~15 MB; a checkout that is
+pulled or edited often gathered hundreds of MB of machine code that nothing will load again
+(session 29: 29 folders, 448 MB). The first :func:`cache_dir` of a process marks its folder as
+used (its modification time) and deletes the ``sim-<hash>`` folders beside it beyond the
+:data:`KEPT_OTHER_VERSIONS` most recently used (:func:`prune_cache_folders`). A process of an
+older version whose folder went meanwhile loses nothing but its cache: numba recreates a missing
+cache folder when it saves a kernel and compiles what it cannot load.
 """
 import hashlib
 import os
+import re
+import shutil
 from functools import lru_cache
 from pathlib import Path
 
@@ -26,6 +36,11 @@ import numba
 SIM_ROOT = Path(__file__).resolve().parents[1]     # the whole sim/ package, every layer
 #: characters of the SHA-256 hex digest in the cache folder name (64 bits: no collision in practice)
 CACHE_KEY_LENGTH = 16
+#: cache folders of other versions of sim/ kept beside the current one, the most recently used:
+#: switching between a few branches or worktrees keeps their compiled kernels (housekeeping
+#: choice: each folder holds ~15 MB; a version not among them compiles again, ~80 s, when used)
+KEPT_OTHER_VERSIONS = 3
+_CACHE_FOLDER = re.compile(rf"sim-[0-9a-f]{{{CACHE_KEY_LENGTH}}}")
 
 _JIT_OPTIONS = dict(cache=True, fastmath=False, nogil=True, no_cfunc_wrapper=True)
 _njit = numba.njit(**_JIT_OPTIONS)
@@ -52,10 +67,34 @@ def source_fingerprint():
     return files_fingerprint(SIM_ROOT, sim_sources())
 
 
+@lru_cache(maxsize=1)
 def cache_dir():
-    """The numba cache folder of this version of ``sim/`` (module docstring)."""
+    """The numba cache folder of this version of ``sim/`` (module docstring); the first call of a
+    process prunes the other versions' folders (:func:`prune_cache_folders`)."""
     base = os.environ.get("NUMBA_CACHE_DIR") or str(SIM_ROOT / "__pycache__" / "numba")
-    return os.path.join(base, f"sim-{source_fingerprint()[:CACHE_KEY_LENGTH]}")
+    folder = os.path.join(base, f"sim-{source_fingerprint()[:CACHE_KEY_LENGTH]}")
+    prune_cache_folders(folder, KEPT_OTHER_VERSIONS)
+    return folder
+
+
+def prune_cache_folders(folder, keep):
+    """Mark the cache folder ``folder`` as used now (creating it) and delete the other
+    ``sim-<hash>`` folders beside it but the ``keep`` most recently used; returns the deleted
+    paths. Nothing else in that parent folder is touched. Best effort: a folder that cannot be
+    marked (read-only checkout) prunes nothing, one that cannot be deleted (or that another
+    process deletes first) is left."""
+    folder = Path(folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        os.utime(folder)
+        others = [p for p in folder.parent.iterdir()
+                  if p != folder and p.is_dir() and _CACHE_FOLDER.fullmatch(p.name)]
+        others.sort(key=lambda p: p.stat().st_mtime, reverse=True)
+    except OSError:
+        return []
+    for path in others[keep:]:
+        shutil.rmtree(path, ignore_errors=True)
+    return others[keep:]
 
 
 def kernel(func):

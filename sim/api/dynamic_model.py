@@ -80,10 +80,20 @@ def body_and_state(model, friction, op, dyn, raw, kin):
 
 
 
+class NoQuasiStaticStart(Exception):
+    """The quasi-static solution a dynamic run starts from did not converge (its load distribution
+    or its kinematics): ``raw`` and ``fr`` as :func:`sim.api.friction_model.coupled_solution` gave
+    them, from which :func:`sim.api.simulation.combined_results` tells why."""
+
+    def __init__(self, raw, fr):
+        super().__init__("the quasi-static start of the dynamic run did not converge")
+        self.raw, self.fr = raw, fr
+
+
 def quasi_static_start(model, friction, op):
     """The combined quasi-static solution of one case (as :func:`sim.api.simulation.solve_case`):
-    (raw solve output, friction evaluation); RuntimeError when its load distribution or kinematics
-    do not converge. A friction-load fixed point that does not settle (``coupling_converged``
+    (raw solve output, friction evaluation); :class:`NoQuasiStaticStart` when its load distribution
+    or kinematics do not converge. A friction-load fixed point that does not settle (``coupling_converged``
     False: skewed rollers flipping between their pocket walls from pass to pass) still gives the
     start, its last pass: the start is an initial state, and the run's own steady-state detector
     decides (such a run reports no steady state, README). InputError, before any friction or time
@@ -95,7 +105,7 @@ def quasi_static_start(model, friction, op):
         raise InputError(f"solver=dynamic at load.Fa = {op.Fa:g} N, load.Fr = {op.Fr:g} N, tilt "
                          f"{op.tilt_deg:g} deg: {model.static_limit(raw)[1]}")
     if fr is None or not (raw["converged"] and fr["friction_converged"]):
-        raise RuntimeError(f"the quasi-static start of the dynamic run did not converge at {op}")
+        raise NoQuasiStaticStart(raw, fr)
     return raw, fr
 
 

@@ -35,7 +35,7 @@ from sim.api.schema import validate
 from sim.errors import InputError
 from sim.geometry import Geometry
 from sim.io import (DesignFailure, DesignResult, build_batch_dataset, build_dataset, build_dynamic_dataset,
-                    written_optional)
+                    failure_message, written_optional)
 from sim.physics.lubricant import Lubricant
 
 CACHE_SIZE = 128                      # configurations whose YAML and models are kept
@@ -80,6 +80,12 @@ def solve_case(model, friction, op, output_cfg):
     if friction is None:
         return case_results(model, op, model.solve(op), output_cfg)
     raw, fr = coupled_solution(model, friction, op)
+    return combined_results(model, op, raw, fr, output_cfg, t0)
+
+
+def combined_results(model, op, raw, fr, output_cfg, t0):
+    """:func:`solve_case`'s outputs of the coupled solution (raw, fr) of
+    :func:`sim.api.friction_model.coupled_solution` begun at ``time.perf_counter()`` = t0."""
     if fr is None:      # no load solution, or beyond the static limit: case_results reports why
         return case_results(model, op, raw, output_cfg)
     res = case_results(model, op, raw, output_cfg)
@@ -226,9 +232,17 @@ def _simulate_dynamic(cfg, plain):
     model.check_limits(op)
     t0 = time.perf_counter()
     dyn = plain["solver"]["dynamic"]
-    dcase = dynamic_model.prepare(model, friction, op, dyn)
-    integ = dynamic_model.run(dcase)
-    summary, series = dynamic_model.outputs(model, op, dcase, integ, time.perf_counter() - t0, plain["output"])
+    try:
+        dcase = dynamic_model.prepare(model, friction, op, dyn)
+    except dynamic_model.NoQuasiStaticStart as exc:
+        # no start, no run: a case without a result (converged False, its reason in the dataset's
+        # failed_cases) and an empty time series, as a quasi-static run reports the same case
+        summary = combined_results(model, op, exc.raw, exc.fr, plain["output"], t0)
+        summary["status"] = f"{exc}: {failure_message(summary)}"
+        series = None
+    else:
+        integ = dynamic_model.run(dcase)
+        summary, series = dynamic_model.outputs(model, op, dcase, integ, time.perf_counter() - t0, plain["output"])
     return build_dynamic_dataset(model.geometry, op, summary, series, config_yaml(cfg, plain), model.settings, dyn,
                                  optional_outputs(friction, dynamic=True))
 

@@ -1,5 +1,6 @@
 """The numba cache is keyed on the whole of ``sim/`` (sim._math.jit): a kernel never runs the
-stale machine code of a callee that changed in another module."""
+stale machine code of a callee that changed in another module; the folders of old versions are
+pruned."""
 import os
 import shutil
 
@@ -37,3 +38,29 @@ def test_kernels_are_cached_in_the_fingerprinted_folder():
     index_files = [f for _, _, files in os.walk(folder) for f in files if f.startswith("ehl.film_line")]
     assert any(f.endswith(".nbi") for f in index_files), index_files
     assert numba.config.CACHE_DIR == os.environ.get("NUMBA_CACHE_DIR", "")
+
+
+def test_old_versions_cache_folders_are_pruned_to_the_most_recently_used(tmp_path):
+    """Six other versions' folders with staggered use times, a folder of something else and a
+    file: pruning for a new version keeps it and the KEPT_OTHER_VERSIONS most recently used
+    others, deletes the older ones and leaves everything not named sim-<hash> alone."""
+    keep = jit.KEPT_OTHER_VERSIONS
+    old = []
+    for age in range(6):
+        path = tmp_path / f"sim-{age:016x}"
+        (path / "physics").mkdir(parents=True)
+        (path / "physics" / "ehl.film_line-1.py312.nbi").write_bytes(b"index")
+        os.utime(path, (1e9 - 1e4 * age, 1e9 - 1e4 * age))     # age 0 used last
+        old.append(path)
+    (tmp_path / "sim-notahash").mkdir()
+    (tmp_path / "user_kernels").mkdir()
+    (tmp_path / "notes.txt").write_text("not a cache")
+    current = tmp_path / f"sim-{'f' * jit.CACHE_KEY_LENGTH}"
+    deleted = jit.prune_cache_folders(current, keep)
+    assert sorted(deleted) == sorted(old[keep:])
+    assert current.is_dir() and all(p.is_dir() for p in old[:keep])
+    assert not any(p.exists() for p in old[keep:])
+    assert {"sim-notahash", "user_kernels", "notes.txt"} <= {p.name for p in tmp_path.iterdir()}
+    # the current folder is now the most recently used: pruning again for an older version keeps it
+    assert jit.prune_cache_folders(old[0], keep) == []
+    assert current.is_dir()

@@ -299,3 +299,18 @@ def test_a_film_the_inlet_heating_factor_cancels_is_no_result():
     cool = _sim("bearing=trb_32208", "load.Fr=0", "load.oil_temperature=-20")
     assert bool(_one(cool, "converged"))
     assert np.all(cool.lambda_ratio.values > 1.0) and _one(cool, "torque") > 1000.0
+
+
+def test_a_dynamic_run_whose_quasi_static_start_fails_is_a_case_without_a_result():
+    """The same -40 degC case with solver=dynamic: the run starts from the quasi-static solution,
+    which has none; the run is reported as the quasi-static one reports the case (converged False,
+    its variables NaN, the reason in failed_cases, saying that the start failed) with an empty
+    time series, not as an exception (before: RuntimeError and a traceback, no file)."""
+    cold = _sim("solver=dynamic", "bearing=trb_32208", "load.Fr=0", "load.oil_temperature=-40")
+    assert cold.attrs["solver"] == "dynamic"
+    assert not bool(_one(cold, "converged"))
+    assert np.isnan(_one(cold, "torque")) and np.isnan(_one(cold, "cage_speed"))
+    reason = cold.attrs["failed_cases"]
+    assert "quasi-static start of the dynamic run did not converge" in reason
+    assert "Gupta's inlet-heating factor is 0" in reason
+    assert cold.sizes["time"] == 0 and cold.Q_t.shape == (1, 1, 0, cold.sizes["roller"], 2)
