@@ -898,6 +898,22 @@ FREE_FILM_SPIN_TOLERANCE = 1e-3
 # counts as periodic (free_roller_speeds, no roller on a wall): the orbit speeds then average to the
 # cage speed within 1e-3 h / (r_pocket 2 pi), ~2e-7 of it (h = 0.075, r_pocket = 50 mm); numerical choice.
 POCKET_LAP_TOLERANCE = 1e-3
+# Sweeps of free_roller_speeds at one cage speed with rollers on walls after which the place the first
+# roller arrives with is no longer the one the lap ended with but a root search on the lap's closure
+# (regula falsi with the Illinois modification, Dowell & Jarratt 1971, on G(b) = place after the lap -
+# b): a lightly loaded roller near a wall can make the lap's map of that place swing by as much as it
+# is moved (a slope near -1), so that plain sweeps alternate between two states (TRB 32208 at 12.98 /
+# 28.91 kN, 7916 rpm: the 128 N rollers opposite the load zone on and off the wall behind them); the
+# two states bracket the closure's root. Numerical choice: the sweeps that converge settle in 2-5.
+LOOP_PLAIN_SWEEPS = 8
+# Sweeps of free_roller_speeds also settle where they still solve rollers again but move no roller's spin or
+# orbit speed by more than this fraction of itself: a roller on a pocket wall turns such changes into
+# residuals beyond its tolerances (the wall's stiffness), and the sweeps never found every roller within
+# them at once (TRB 31313 at 121.7 / 174.0 kN, 1320 rpm: orbit speeds moving by 1e-9 of themselves in a
+# cycle of 5 sweeps, z-moment residuals 3-8 x their tolerance, 0.1 N mm; TRB 32208 at 23.8 / 56.8 kN, 7826
+# rpm: one or two rollers solved again in each of 60 sweeps). Far below what the outputs resolve (the film
+# follows the speeds to FREE_FILM_SPIN_TOLERANCE). Numerical choice.
+FREE_SETTLE_CHANGE = 1e-8
 # Cage speed steps of the free rollers' cage balance (free_roller_speeds) before a bracket is found: at
 # most this fraction of the cage speed times 2^k at the k-th step (the free orbit speeds lie within about
 # 1 % of the rigid cage's, README, "Free rollers and their pocket play"); numerical choice.
@@ -1086,10 +1102,14 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
 
     Solved roller by roller along the orbit from the most loaded one (Gauss-Seidel), sweep after
     sweep, until a sweep finds every roller's residuals within the tolerances at the spin and place
-    of the roller ahead (recomputed from its stored evaluation: they enter the residuals explicitly).
+    of the roller ahead (recomputed from its stored evaluation: they enter the residuals explicitly),
+    or solves rollers again without moving any speed by more than FREE_SETTLE_CHANGE of itself.
     A loaded roller's moment falls steeply with its spin (dM/domega << -c_spin), so a sweep
     contracts the spin errors by the product of c_spin / (c_spin - dM/domega) over the rollers: two
-    or three sweeps. With no roller on a wall the cage speed is set to the rollers' mean orbit speed
+    or three sweeps. The first roller arrives with the place the last lap ended with; with rollers on
+    walls, after LOOP_PLAIN_SWEEPS sweeps, with the root of the lap's closure instead (the place it
+    arrives with = the place the lap ends with; regula falsi once two laps bracket it), and a plain
+    sweep confirms it. With no roller on a wall the cage speed is set to the rollers' mean orbit speed
     after each sweep. With rollers on walls, once the sweeps settle, the cage speed takes a Newton
     step on the cage balance, its slope from the rollers' linearisations (:func:`_cage_slope`), at
     most to where the next roller meets a wall (CONTACT_OVERSHOOT), within a bracket (regula falsi
@@ -1175,12 +1195,21 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
         for _ in range(settings.max_iter):      # cage speed steps at this film
             c_spin, reach = _slot(free, wc, Z)
             settled = False
-            for _ in range(settings.max_iter):      # sweeps along the orbit
+            behind = _orbit_successor(first, -direction, Z)
+            arrive = gap[behind]        # the place the first roller arrives with
+            plain = True                # ... the place the last lap ended with (else the root search's)
+            b_lo = 0.0                  # the closure's bracket: G(b_lo) > 0 > G(b_hi)
+            b_hi = 0.0
+            G_lo = 0.0
+            G_hi = 0.0
+            side = 0                    # the end replaced last (+1 lo, -1 hi, 0 none yet)
+            for sweep in range(settings.max_iter):      # sweeps along the orbit
                 solves = 0
+                moved = 0.0                 # the largest relative change of a speed by a solve (FREE_SETTLE_CHANGE)
                 j = first
                 for _ in range(Z):
                     u = _orbit_successor(j, -direction, Z)
-                    base = gap[u]
+                    base = arrive if j == first else gap[u]
                     if not active[j]:
                         xs[j, 0] = xs[u, 0]
                         xs[j, 1] = wc
@@ -1206,6 +1235,10 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                     if not ok:
                         failed = True
                         break
+                    if solved[j]:
+                        moved = max(moved, abs(x[0] - xs[j, 0]) / abs(xs[j, 0]), abs(x[1] - xs[j, 1]) / abs(xs[j, 1]))
+                    else:
+                        moved = np.inf
                     for a in range(m):
                         xs[j, a] = x[a]
                     for i in range(NEV):
@@ -1230,10 +1263,37 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                         wc += lap / (reach * Z)
                         c_spin, reach = _slot(free, wc, Z)
                         solves += 1         # a sweep more, at that cage speed
+                        moved = np.inf
                     _centre_in_play(gap)
-                if solves == 0:
+                if plain and (solves == 0 or moved <= FREE_SETTLE_CHANGE):
                     settled = True
                     break
+                # the lap's closure (LOOP_PLAIN_SWEEPS): with rollers on walls, after that many sweeps
+                G = gap[behind] - arrive
+                if walls == 0:              # the places' common offset is free: no closure to solve
+                    G_lo = 0.0
+                    G_hi = 0.0
+                    side = 0
+                elif sweep + 1 >= LOOP_PLAIN_SWEEPS and G != 0.0:
+                    if G > 0.0:
+                        if side == 1:
+                            G_hi *= 0.5     # Illinois: the same end replaced twice
+                        b_lo = arrive
+                        G_lo = G
+                        side = 1
+                    else:
+                        if side == -1:
+                            G_lo *= 0.5
+                        b_hi = arrive
+                        G_hi = G
+                        side = -1
+                # (every roller within its tolerances at the proposed place: a plain sweep confirms it)
+                if solves > 0 and G_lo > 0.0 and G_hi < 0.0:
+                    arrive = (b_lo * G_hi - b_hi * G_lo) / (G_hi - G_lo)
+                    plain = False
+                else:
+                    arrive = gap[behind]
+                    plain = True
             if failed and have_state and retreats < MAX_HALVINGS:
                 # a roller's solve failed at this cage speed, started from a state solved far from it: back to
                 # the last state solved (a bracket's end) and half the step
