@@ -519,7 +519,9 @@ class Integration:
     ``changes`` (those of every window after the first, in order), ``averaged_windows`` (1, or
     the block of windows whose mean is the steady state when they fluctuate about it),
     ``average_from`` (the sample where those windows begin),
-    ``rhs_calls``, ``jac_calls``, ``lu_calls`` (LU decompositions of the Newton matrices).
+    ``rhs_calls``, ``jac_calls``, ``lu_calls`` (LU decompositions of the Newton matrices),
+    ``failure`` (None, or why the integrator stopped: the run then has no steady state, and the
+    samples it reached stay in the series).
     """
 
     def __init__(self, problem, settings):
@@ -566,6 +568,7 @@ class Integration:
         rols.append(r0)
         tots.append(t0)
         self.steady = False
+        self.failure = None
         self.windows = 0
         self.changes = []
         # one BLAS thread: the dense LU of the Newton matrix (~200 x 200) is 100x slower under
@@ -586,10 +589,6 @@ class Integration:
             t_eval = np.minimum(t + duration * np.arange(1, s.samples + 1) / s.samples, t_end)
             sol = solve_ivp(self.f, (t, t_end), y, method=s.method, rtol=s.rtol, atol=s.atol, jac=self.jac,
                             t_eval=t_eval)
-            if not sol.success:
-                raise RuntimeError(f"dynamic integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
-            self.windows = w + 1
-            bar.update()
             self.lu_calls += sol.nlu
             for i in range(sol.t.shape[0]):
                 r, tt = self.outputs(sol.y[:, i])
@@ -597,6 +596,11 @@ class Integration:
                 ys.append(sol.y[:, i].copy())
                 rols.append(r)
                 tots.append(tt)
+            if not sol.success:     # the samples it reached stay; no steady state
+                self.failure = f"dynamic integration failed after t = {ts[-1]:.6g} s: {sol.message}"
+                break
+            self.windows = w + 1
+            bar.update()
             y = sol.y[:, -1].copy()
             t = sol.t[-1]
             win = slice(len(ts) - sol.t.shape[0], len(ts))
@@ -667,8 +671,11 @@ class Integration:
         if dphi > 1e-9 * pitch:
             sol = solve_ivp(self.f, (t, t + dphi / y[WPHI]), y, method=s.method, rtol=s.rtol, atol=s.atol,
                             jac=self.jac)
-            if not sol.success:
-                raise RuntimeError(f"dynamic integration failed at t = {sol.t[-1]:.6g} s: {sol.message}")
+            if not sol.success:     # the run ends at its last window, without a steady state
+                self.steady = False
+                self.failure = (f"dynamic integration failed after t = {t:.6g} s (aligning the steady state): "
+                                f"{sol.message}")
+                return
             y = sol.y[:, -1].copy()
         slot = np.rint(np.mod(y[PHI:Z * NS:NS], 2.0 * np.pi) / pitch).astype(np.int64) % Z
         if not np.array_equal(np.sort(slot), np.arange(Z)):
