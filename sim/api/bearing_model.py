@@ -186,6 +186,24 @@ class BearingModel:
                     f"solver.max_static_load_ratio = {1.0 / limit:.3g} (ISO 76: 4000 MPa at the most loaded contact "
                     "defines C0; beyond it the steel yields and the elastic contact model does not hold)")
 
+    def load_failure(self, raw, op: OperatingPoint):
+        """Why a :meth:`solve` result ``raw`` that did not converge has no load distribution, from its
+        last iterate: the rollers it loads, the largest load and contact pressure, the ring's
+        displacement, the residual, and with a radial load Fa / Fr beside the single-row bound
+        tan(a_min) of :meth:`check_limits` (near it the load zone closes to one roller and the ring's
+        place is barely determined: the ring then moves by millimetres, README "Heavy and near-bound
+        random cases")."""
+        Q = raw["Q"].sum(axis=1) + raw["Q_rib"]
+        ring = raw["ring"]
+        text = (f"no load equilibrium found after {raw['iterations']} ring iterations; its last "
+                f"iterate loads {int(np.count_nonzero(Q > 0.0))} of {Q.shape[0]} rollers (the largest {Q.max():.6g} "
+                f"N, pmax {float(raw['pressure'].max()):.0f} MPa), moves the inner ring {ring[0]:.4g} mm axially and "
+                f"{ring[1]:.4g} mm radially and leaves a residual of {float(np.abs(raw['residual']).max()):.4g} N")
+        if op.Fr > 0.0:
+            text += (f"; Fa / Fr = {op.Fa / op.Fr:.4g} against the single-row bound tan(a_min) = "
+                     f"{float(np.tan(self.geometry.outer_normal_angle_min)):.4g}")
+        return text
+
     def check_limits(self, op: OperatingPoint):
         """Refuse a load case beyond the validity of the model, before any solve: InputError
         naming the load key, its value, the allowed range for this bearing and the reason.
@@ -499,7 +517,7 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     P0 = float(ratings.equivalent_static_load(op.Fr, op.Fa, g.ratings_alpha))
     res.update(P=P, P0=P0)
     if not raw["converged"]:
-        return res
+        return res | {"status": model.load_failure(raw, op)}
     p = raw["pressure"]                       # (Z, 2, N) MPa
     s0, status = model.static_limit(raw)      # a case beyond it is no result of the elastic model
     if status is not None:

@@ -12,6 +12,8 @@
   then reported as not converged). Degenerate in-range values (alpha underflowing to 0 rad,
   the inputs that crashed before) end in a refusal or a result.
 """
+import re
+
 import numpy as np
 import pytest
 
@@ -314,3 +316,54 @@ def test_a_dynamic_run_whose_quasi_static_start_fails_is_a_case_without_a_result
     assert "quasi-static start of the dynamic run did not converge" in reason
     assert "Gupta's inlet-heating factor is 0" in reason
     assert cold.sizes["time"] == 0 and cold.Q_t.shape == (1, 1, 0, cold.sizes["roller"], 2)
+
+
+def test_a_dynamic_run_whose_integrator_stops_keeps_its_samples_and_the_reason(monkeypatch):
+    """scipy's solve_ivp can stop short (a step size below round-off, a Newton failure it cannot
+    recover from): the run ends as a case without a result, the integrator's message in
+    failed_cases, and the samples it reached in the time series (before: RuntimeError, nothing
+    written). Made to happen here: the first window integrates as usual, the second stops after a
+    tenth of its span with scipy's message."""
+    import scipy.integrate
+
+    from sim.solvers import dynamic
+
+    message = "Required step size is less than spacing between numbers."
+    windows = []
+
+    def stopping(fun, t_span, y0, **kwargs):
+        windows.append(t_span)
+        if len(windows) == 1:
+            return scipy.integrate.solve_ivp(fun, t_span, y0, **kwargs)
+        end = t_span[0] + 0.1 * (t_span[1] - t_span[0])
+        kwargs["t_eval"] = kwargs["t_eval"][kwargs["t_eval"] <= end]
+        sol = scipy.integrate.solve_ivp(fun, (t_span[0], end), y0, **kwargs)
+        sol.success, sol.message = False, message
+        return sol
+
+    monkeypatch.setattr(dynamic, "solve_ivp", stopping)
+    ds = _sim("solver=dynamic", "bearing=trb_32208", "load.Fr=0", "solver.dynamic.window_revolutions=0.05",
+              "solver.dynamic.samples_per_window=10")
+    assert len(windows) == 2
+    assert not bool(_one(ds, "converged")) and np.isnan(_one(ds, "torque"))
+    reason = ds.attrs["failed_cases"]
+    assert "dynamic integration failed after t = " in reason and message in reason
+    # the start, the first window's 10 samples and the 1 the second reached (a tenth of its span)
+    assert ds.sizes["time"] == 12
+    assert np.all(np.isfinite(ds.cage_speed_t.values)) and np.all(np.diff(ds.time.values) > 0.0)
+
+
+def test_a_load_case_without_equilibrium_says_what_its_last_iterate_did():
+    """Prototype TSRB at Fa / Fr = 0.545, 1.2 x the single-row bound tan(a_min) = 0.454 (a random
+    in-range case, session 30): the load zone closes to 3 rollers and the ring's place is barely
+    determined, the ring solve finds no equilibrium. The reason names the last iterate (rollers
+    loaded, largest load, pmax, ring displacement, residual) and Fa / Fr against the bound,
+    instead of only the iteration count."""
+    ds = _sim("bearing=tsrb_prototype", "friction.enabled=false", "load.Fa=9157.242228918598",
+              "load.Fr=16788.97615621925", "load.speed=631.8735917143987")
+    assert not bool(_one(ds, "converged"))
+    reason = ds.attrs["failed_cases"]
+    assert "no load equilibrium found after" in reason
+    assert re.search(r"its last iterate loads \d+ of 17 rollers \(the largest [0-9.e+]+ N, pmax \d+ MPa\), moves the "
+                     r"inner ring -?[0-9.e+-]+ mm axially", reason)    # 3 rollers, 1.46 mm here; a failed iterate
+    assert "Fa / Fr = 0.5454 against the single-row bound tan(a_min) = 0.4536" in reason
