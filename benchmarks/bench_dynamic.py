@@ -61,6 +61,10 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   (746.5, 4974.9 N mm). At the state after one revolution the TRB's rhs costs 2.86 ms: film 1.05 ms (its
   thermal viscosity factor 0.63), tractions 1.8; over 4 revolutions rhs 58 %, Jacobians 27 %, LU and
   scipy 10 % (cProfile).
+- 2026-11-29 (session 30), f4d5991, one run each on the idle machine (load 0.7-1.0): TRB 32208 73.6 s CPU
+  (7.36 s/rev; rhs 1.71 ms at the start state), pinion TSRB 20.8 s (2.08 s/rev; rhs 2.17 ms); the same work
+  (11743 rhs, 469 Jacobians; 5321, 195) and end torques (746.5, 4974.9 N mm) as session 29: the session's
+  changes do not touch the right-hand side.
 
 Run from the repository root::
 
