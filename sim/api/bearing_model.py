@@ -467,12 +467,15 @@ class BearingModel:
                            ring_backtracks=int(totals[2]), continuation_steps=steps,
                            roller_classes=int(last.roller_classes),
                            unrested_rollers=max(unrested, int(last.unrested_rollers)))
-        return dict(converged=bool(converged), iterations=int(iterations),
-                    residual=np.array([last.residual_axial, last.residual_radial, last.residual_lateral]),
-                    wall_time=wall_time_s, ring=ring, ring_load=np.array([Fa, Fr, Fy]),
-                    poses=poses, line_load=q, pressure=pressure, Q=rollers.Q, Q_rib=rollers.Q_rib,
-                    rib_contact=rollers.rib_contact, roller_loads=ext, frames=rollers.frames, free=rollers.free,
-                    solver_info=solver_info)
+        raw = dict(converged=bool(converged), iterations=int(iterations),
+                   residual=np.array([last.residual_axial, last.residual_radial, last.residual_lateral]),
+                   wall_time=wall_time_s, ring=ring, ring_load=np.array([Fa, Fr, Fy]),
+                   poses=poses, line_load=q, pressure=pressure, Q=rollers.Q, Q_rib=rollers.Q_rib,
+                   rib_contact=rollers.rib_contact, roller_loads=ext, frames=rollers.frames, free=rollers.free,
+                   solver_info=solver_info)
+        if not converged:
+            raw["status"] = self.load_failure(raw, op)
+        return raw
 
 
 def _copy_rollers(rollers):
@@ -516,8 +519,8 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
     P = float(ratings.equivalent_dynamic_load(op.Fr, op.Fa, g.ratings_alpha))
     P0 = float(ratings.equivalent_static_load(op.Fr, op.Fa, g.ratings_alpha))
     res.update(P=P, P0=P0)
-    if not raw["converged"]:
-        return res | {"status": model.load_failure(raw, op)}
+    if not raw["converged"]:    # the solver's reason (BearingModel.load_failure; the dynamic run sets its own)
+        return res | ({"status": raw["status"]} if "status" in raw else {})
     p = raw["pressure"]                       # (Z, 2, N) MPa
     s0, status = model.static_limit(raw)      # a case beyond it is no result of the elastic model
     if status is not None:

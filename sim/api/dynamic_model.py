@@ -247,9 +247,8 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
                solver_info=dict(unrested_rollers=0))   # every roller runs on its own (no rest to fail)
     summary = case_results(model, op, raw, output_cfg)
     if not summary["converged"]:    # no steady state, or beyond the static load limit (case_results)
-        if not integ.steady:
-            summary["status"] = (integ.failure
-                                 or f"no steady state within {integ.windows} windows (solver.dynamic.max_windows)")
+        summary.setdefault("status", integ.failure or f"no steady state within {integ.windows} windows "
+                                                       "(solver.dynamic.max_windows)")
         return summary, series
     # scalars: the exact means over the last window, or the block of windows that fluctuate about
     # the steady state (whole roller passes; quadrature states)

@@ -417,9 +417,10 @@ def coupled_solution(model, friction, op):
     ``fr["coupling_converged"]`` whether the fixed point settled (it may not: a skewed TSRB whose
     skew moment changes sign with the loads its own lateral tractions cause flips its rollers
     between the pocket walls from pass to pass). ``fr`` is None when the first solve did not
-    converge or is beyond the static limit (below); ``fr["friction_converged"]`` is False when a kinematic solve or a load solve with the
-    friction loads did not converge (a pass's kinematic solve starts from the previous pass's
-    speeds and Jacobian and, where that fails, once more from rolling kinematics).
+    converge or is beyond the static limit (below); ``fr["friction_converged"]`` is False when a
+    kinematic solve or a load solve with the friction loads did not converge (a pass's kinematic
+    solve starts from the previous pass's speeds and Jacobian and, where that fails, once more from
+    rolling kinematics).
 
     Free rollers (``friction.cage_guidance = free``) at high speed can have more than one periodic
     state of their places in the pockets (which rollers ride on a wall), and a pass's free solve

@@ -1205,7 +1205,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
             side = 0                    # the end replaced last (+1 lo, -1 hi, 0 none yet)
             for sweep in range(settings.max_iter):      # sweeps along the orbit
                 solves = 0
-                moved = 0.0                 # the largest relative change of a speed by a solve (FREE_SETTLE_CHANGE)
+                still = True                # no solve moved a speed by more than FREE_SETTLE_CHANGE of itself
                 j = first
                 for _ in range(Z):
                     u = _orbit_successor(j, -direction, Z)
@@ -1235,10 +1235,8 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                     if not ok:
                         failed = True
                         break
-                    if solved[j]:
-                        moved = max(moved, abs(x[0] - xs[j, 0]) / abs(xs[j, 0]), abs(x[1] - xs[j, 1]) / abs(xs[j, 1]))
-                    else:
-                        moved = np.inf
+                    still = (still and solved[j] and abs(x[0] - xs[j, 0]) <= FREE_SETTLE_CHANGE * abs(xs[j, 0])
+                             and abs(x[1] - xs[j, 1]) <= FREE_SETTLE_CHANGE * abs(xs[j, 1]))
                     for a in range(m):
                         xs[j, a] = x[a]
                     for i in range(NEV):
@@ -1263,9 +1261,9 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                         wc += lap / (reach * Z)
                         c_spin, reach = _slot(free, wc, Z)
                         solves += 1         # a sweep more, at that cage speed
-                        moved = np.inf
+                        still = False
                     _centre_in_play(gap)
-                if plain and (solves == 0 or moved <= FREE_SETTLE_CHANGE):
+                if plain and (solves == 0 or still):
                     settled = True
                     break
                 # the lap's closure (LOOP_PLAIN_SWEEPS): with rollers on walls, after that many sweeps
