@@ -66,8 +66,29 @@ def _values(ds, var, variant, cases):
                      for c in cases])
 
 
-def _label(variant, values):
-    return variant if np.isfinite(values).any() else f"{variant} (no result)"
+def _end_peaks(ds, variant, cases):
+    """Per case index (None: no case): whether the most loaded roller's pressure peaks in an end
+    slice (either race): its pmax is an edge's, not the crown's."""
+    design = np.flatnonzero(ds.variant.values == variant)
+    if not design.size or "pressure" not in ds:
+        return np.zeros(len(cases), dtype=bool)
+    p = ds.pressure.isel(design=design[0]).max("race").transpose("case", "slice").values
+    last = p.shape[1] - 1
+    return np.array([c is not None and np.isfinite(p[c]).any() and int(np.nanargmax(p[c])) in (0, last)
+                     for c in cases])
+
+
+def _label(ds, variant, values, cases):
+    """Legend entry of one variant over the case indices ``cases``: "(no result)" where it has none;
+    "(peak at a roller end in k of n)" where its pressure peaks in an end slice in k of the n cases
+    with a result (:func:`_end_peaks`): there its pmax is the edge's, not the crown's (in this model
+    Table 7.2's PCR = 250 mm, variant PCR_up2, carries its load on 0.10-0.16 Lwe at the large end
+    in all six scenarios, PCR = 122.5 mm in the three heaviest)."""
+    solved = np.isfinite(values)
+    if not solved.any():
+        return f"{variant} (no result)"
+    k = int(np.count_nonzero(_end_peaks(ds, variant, cases)[solved]))
+    return f"{variant} (peak at a roller end in {k} of {solved.sum()})" if k else variant
 
 
 def _ylabel(ds, var):
@@ -98,7 +119,7 @@ def _line_figure(ds, var, variants, cases, title, path):
     Fa = ds.Fa.values[cases] / 1e3
     for variant in variants:
         values = _values(ds, var, variant, cases)
-        ax.plot(Fa, values, "o-", label=_label(variant, values))
+        ax.plot(Fa, values, "o-", label=_label(ds, variant, values, cases))
     ax.set_xscale("log")
     ax.minorticks_off()
     ax.set_xticks(Fa, [f"{f:g}" for f in Fa])
@@ -173,13 +194,14 @@ def plot_figures(path):
     written = []
     for var in quantities:
         for family, variants in FAMILIES.items():
-            series = [(_label(v, vals), vals) for v in COMPARED + variants
+            series = [(_label(ds, v, vals, at_speed), vals) for v in COMPARED + variants
                       for vals in [_values(ds, var, v, at_speed)]]
             written.append(_bar_figure(ds, var, series, f"{var}: variation of {family} (thesis Table 7.2), 2000 rpm",
                                        out / f"{var}_{family}.png"))
         speeds = sorted({float(s) for s in ds.speed.values})
-        series = [(f"{_label(v, vals)}, {s:g} rpm", vals) for v in COMPARED for s in speeds
-                  for vals in [_values(ds, var, v, [_case(ds, Fa, Fr, s) for Fa, Fr in scenarios()])]]
+        series = [(f"{_label(ds, v, vals, cases)}, {s:g} rpm", vals) for v in COMPARED for s in speeds
+                  for cases in [[_case(ds, Fa, Fr, s) for Fa, Fr in scenarios()]]
+                  for vals in [_values(ds, var, v, cases)]]
         written.append(_bar_figure(ds, var, series, f"{var} at 1000, 2000, 4000 rpm (thesis Figs. 7.19, 7.20)",
                                    out / f"{var}_speed.png"))
     axial = [int(c) for c in np.argsort(ds.Fa.values)

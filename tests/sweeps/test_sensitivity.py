@@ -45,3 +45,24 @@ def test_figures_of_7_2(tmp_path, monkeypatch):
     monkeypatch.setattr(sensitivity, "write_figure_atomic", lambda fig, path, dpi: Path(path).touch())  # names only
     assert {p.name for p in plot_figures(tmp_path / "sweep.nc")} == pmax_only  # no torque in the data
     assert xr.load_dataset(tmp_path / "sweep.nc").variant.values.tolist()[-1] == "PCR_down2"
+
+
+def test_legend_marks_designs_whose_pressure_peaks_at_a_roller_end(tmp_path):
+    """Table 7.2's PCR = 250 mm (variant PCR_up2) crowns the roller so little that its contact sits on the
+    large end (0.10-0.16 Lwe loaded, pmax 2.4-3.4 GPa against the reference's 1.0-1.4 GPa at 20 slices):
+    its legend entry says so in every scenario, while the reference, whose pressure peaks at its
+    contact points inside the roller (thesis 7.1, Fig. 7.1), carries no mark."""
+    runs = [run_cases(sim.load_config([*FAST, f"+variant={v}", "load=sensitivity_scenarios",
+                                       f"output.cache_dir={tmp_path}"]), progress=False)[0]
+            for v in ("reference", "PCR_up2")]
+    ds = io.combine_designs(runs, {"variant": (np.array(["reference", "PCR_up2"]), {"long_name": "variant"})})
+    cases = list(range(ds.sizes["case"]))
+    up2 = sensitivity._values(ds, "pmax", "PCR_up2", cases)
+    ref = sensitivity._values(ds, "pmax", "reference", cases)
+    assert np.all(up2 > 1.5 * ref)     # the edge's pressure, not the crown's
+    assert np.all(ds.contact_length_ratio.sel(race="outer").isel(design=1).values < 0.25)
+    assert sensitivity._label(ds, "PCR_up2", up2, cases) == f"PCR_up2 (peak at a roller end in {len(cases)} of {len(cases)})"
+    assert sensitivity._label(ds, "reference", ref, cases) == "reference"
+    # a case without a result is left out of the count
+    assert sensitivity._label(ds, "PCR_up2", np.where(np.arange(len(cases)) == 0, np.nan, up2), cases) \
+        == f"PCR_up2 (peak at a roller end in {len(cases) - 1} of {len(cases) - 1})"
