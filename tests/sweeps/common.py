@@ -10,9 +10,10 @@ FAST = ["friction.enabled=false", "solver.n_slices=8"]
 SWEEP = ["bearing.PCR=8,90,110", "load.Fa=3000,5000", "load.Fr=[0,2000]"]
 
 
-# A sweep with friction on, the default (tsrb_reference, 8 slices): a job with a result and one whose
-# case is beyond the static limit after the solve (80 kN: pmax ~5 GPa, tests/published/test_static_capacity.py).
-FRICTION_SWEEP = ["bearing=tsrb_reference", "load.Fa=3000,80000", "load.Fr=0", "solver.n_slices=8"]
+# A sweep with friction on, the default (8 slices), over a TSRB and a TRB (whose rib contact adds its own
+# friction term): the TSRB's 80 kN case is beyond the static limit after the solve (pmax ~5 GPa,
+# tests/published/test_static_capacity.py), the TRB's (C0 / Y0 ~ 118 kN) is not.
+FRICTION_SWEEP = ["bearing=tsrb_reference,trb_32208", "load.Fa=3000,80000", "load.Fr=0", "solver.n_slices=8"]
 
 
 def multirun(args, sweep_dir, cache_dir, fast=True, **kwargs):

@@ -92,10 +92,15 @@ def test_sweep_with_friction_collects_its_converged_jobs_and_reports_the_refused
     with its torque variables NaN (DATA.md) and its reason in the failure table."""
     sweep = friction_sweep.dir
     ds = xr.load_dataset(sweep / "sweep.nc")
-    assert list(ds.Fa.values) == [3000.0, 80000.0]
-    assert list(ds.converged.values[0]) == [True, False]
+    assert list(ds.Fa.values) == [3000.0, 80000.0] and list(ds.bearing.values) == ["tsrb_reference", "trb_32208"]
+    assert ds.converged.values.tolist() == [[True, False], [True, True]]
     assert np.isfinite(ds.torque.values[0, 0]) and np.isnan(ds.torque.values[0, 1])
     assert np.isfinite(ds.torque_component.values[0, 0]).all() and np.isnan(ds.power_loss.values[0, 1])
+    # the TRB's rows: its rib carries load and friction, the TSRB has none (DATA.md: Q_rib 0 for a TSRB)
+    rib = list(ds.component.values).index("rib")
+    assert (ds.Q_rib.values[1] > 0.0).any(axis=-1).all() and (ds.torque_component.values[1, :, rib] > 0.0).all()
+    assert (ds.Q_rib.values[0, 0] == 0.0).all() and ds.torque_component.values[0, 0, rib] == 0.0
+    np.testing.assert_allclose(ds.torque_component.values[1].sum(axis=-1), ds.torque.values[1], rtol=1e-9)
     assert "roller_skew" not in ds            # friction.skew off: no skew outputs, no placeholders
     assert list(ds.failed_reason.values) == ["not converged"] and list(ds.failed_case.values) == [1]
     assert "static safety" in str(ds.failed_message.values[0])
