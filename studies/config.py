@@ -159,6 +159,29 @@ def check_simulations(study, overrides=None):
                          else f"{line} (in the simulation of study.{role} = {name!r})"
                          for line in str(err).splitlines() if line.strip()]
                 raise StudyConfigError("\n".join(lines)) from err
+    _check_bounds_in_schema(study, overrides)
+
+
+def _check_bounds_in_schema(study, overrides):
+    """Each end of each free parameter's ``study.bounds`` set in the template bearing and checked
+    against the bearing schema (:func:`sim.api.schema.validate`: kappa in (0, 1), alpha in (0, 60]
+    deg, ...): a bound outside it would otherwise stop the study at the first sampled design beyond
+    it, after simulations ran. Combined feasibility (a roller that does not fit) stays a failed
+    design, as for any point (:mod:`sim.geometry`)."""
+    from sim.api.schema import validate as validate_simulation
+
+    template = simulation_config(study, study.bearing, overrides)
+    for name in study.free:
+        bounds = [float(b) for b in study.bounds[name]]
+        for end, value in zip(("lower", "upper"), bounds):
+            cfg = template.copy()
+            cfg.bearing[name] = value
+            try:
+                validate_simulation(cfg)
+            except InputError as err:
+                lines = [line for line in str(err).splitlines() if line.startswith(f"bearing.{name} ")]
+                raise StudyConfigError(f"study.bounds.{name} = {bounds}: its {end} end "
+                                       + (lines[0] if lines else str(err))) from err
 
 
 def _named_load_line(study, k, line):
