@@ -43,10 +43,12 @@ own refinement).
 
 The reported design is the best evaluated point by :func:`studies.constraints.rank_key`
 (feasible by objective first), and with it the constraints and the search bounds that are
-active there: a margin within ``active_tolerance`` of 0, an input within ``active_tolerance``
-of a bound (unit scale). A bound of ``study.bounds`` is a search range the engineer chose, not
-physics (conf/study/*.yaml says why each is where it is): an optimum on one says that the
-optimum lies at or beyond it.
+active there: a margin within ``active_tolerance`` of 0 or inside the back-off band of the run
+that found the point (between minus its back-off and ``active_tolerance``: such a run aimed
+there, so a first run that ends on its evaluation limit stops pressed against it), an input
+within ``active_tolerance`` of a bound (unit scale). A bound of ``study.bounds`` is a search
+range the engineer chose, not physics (conf/study/*.yaml says why each is where it is): an
+optimum on one says that the optimum lies at or beyond it.
 """
 from dataclasses import dataclass, field
 
@@ -71,7 +73,7 @@ class LocalResult:
     message: str                    # the last COBYLA run's stop message
     runs: int                       # COBYLA runs (one per start, then the restarts that were made)
     starts: int = 1                 # starts run (the first, then those screened)
-    active_constraints: list = field(default_factory=list)   # names of margins within tolerance of 0
+    active_constraints: list = field(default_factory=list)   # names of margins within tolerance of 0 or its back-off
     active_bounds: list = field(default_factory=list)        # (index, "low" | "high")
 
     @property
@@ -148,7 +150,10 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
 
     shift = np.zeros(len(names)) if backoff is None else np.asarray(backoff, dtype=float)
 
+    aimed = {}      # per point, the tightening of the run that evaluated it first (its back-off: tightening x shift)
+
     def constraints(u, tightening):
+        aimed.setdefault(np.clip(np.asarray(u, dtype=float), 0.0, 1.0).tobytes(), tightening)
         return -(np.asarray(at(u)[2], dtype=float) + tightening * shift)     # scipy: >= 0 feasible
 
     def best():
@@ -202,7 +207,12 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
     if rank_key(*best()[1:]) < main and max_evaluations - len(seen) >= n_min:
         sequence(best()[0], initial_step * restart_shrink, max_evaluations)   # polish the better basin
     best_u, best_f, best_m = best()
-    active = [str(n) for n, m in zip(names, best_m) if abs(m) <= active_tolerance]
+    # active: a margin within the tolerance of 0, or inside the back-off band that the run which found
+    # the point kept it from (-(back-off + tolerance) <= margin <= tolerance): a first run that ends on
+    # its evaluation limit leaves the design pressed against its tightened constraints, at about minus
+    # the back-off, and those constraints are what stopped it (the start point has no back-off)
+    band = aimed.get(best_u.tobytes(), 0.0) * shift
+    active = [str(n) for n, m, b in zip(names, best_m, band) if -(b + active_tolerance) <= m <= active_tolerance]
     bounds = [(k, "low") for k in range(d) if best_u[k] <= active_tolerance] + \
              [(k, "high") for k in range(d) if best_u[k] >= 1.0 - active_tolerance]
     return LocalResult(best_u, float(best_f), np.asarray(best_m, dtype=float), float(f0), len(seen), message,

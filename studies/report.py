@@ -206,7 +206,8 @@ def local_stage_text(search):
              f"run(s) in all, {L.evaluations} points incl. the starts; last run: {L.message.strip()}): "
              f"{search.objective} {L.start_value:.6g} -> {L.value:.6g} "
              f"({100.0 * (L.value / L.start_value - 1.0):+.2f} %), {'feasible' if L.feasible else 'INFEASIBLE'}."]
-    lines.append("Active constraints (margin within refine.active_tolerance of its limit): "
+    lines.append("Active constraints (margin within refine.active_tolerance of its limit, or between it and the "
+                 "refine.constraint_backoff that the local run which found the design kept from it): "
                  + (", ".join(L.active_constraints) or "none") + ".")
     if L.active_bounds:
         parts = [f"{names[k]} at its {side} bound {float(s.bounds[names[k]][0 if side == 'low' else 1]):g}"

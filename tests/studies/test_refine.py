@@ -157,3 +157,23 @@ def test_the_backoff_aims_each_run_inside_and_the_restarts_return_to_the_boundar
     more = local_refine(circle, [0.1, 0.2], ["simulation", "circle"], restarts=3, **kw)
     assert more.feasible and more.runs == 4
     assert more.value == pytest.approx(-1.0, abs=2e-4) and more.value < one.value
+
+
+def test_a_constraint_inside_the_backoff_band_of_the_run_that_found_the_point_is_active():
+    """The circle problem with the back-off: one run alone ends pressed against its tightened circle,
+    inside the true one (margin between -0.02 and 0): the circle is what stopped it, so it is
+    reported active, the slack (margin -1) is not; with no back-off the same band is the
+    tolerance alone. Before, a first run that ended on its evaluation limit at the pinion's margins
+    of -2.3e-3 (back-off 2e-3, tolerance 1e-3) reported no active constraint (session 31 check)."""
+    def circle(u):
+        return -(u[0] + u[1]), np.array([0.0, (u[0] ** 2 + u[1] ** 2) / 0.5 - 1.0, -1.0])
+
+    kw = dict(max_evaluations=200, initial_step=0.1, final_step=1e-6, active_tolerance=1e-4, restart_shrink=0.2)
+    one = local_refine(circle, [0.1, 0.2], ["simulation", "circle", "slack"], restarts=0, backoff=[0.0, 0.02, 0.02],
+                       **kw)
+    assert -0.02 - 1e-4 <= one.margins[1] < -1e-3           # inside the circle, within the back-off band
+    assert one.active_constraints == ["simulation", "circle"]
+    # the simulation margin (0 wherever there is a result) has no back-off and is active by its tolerance
+    plain = local_refine(lambda u: (-(u[0] + u[1]), np.array([(u[0] ** 2 + u[1] ** 2) / 0.5 - 1.0])), [0.1, 0.2],
+                         ["circle"], max_evaluations=12, initial_step=0.1, final_step=1e-6, active_tolerance=1e-4)
+    assert (plain.active_constraints == ["circle"]) == (abs(plain.margins[0]) <= 1e-4)
