@@ -294,8 +294,12 @@ def validate(study):
     _require(a.get("n_diverse") is None or _is_int(a.get("n_diverse"), 0), "acquisition.n_diverse", a.get("n_diverse"),
              "null (every design of a batch) or an integer >= 0")
     rf = s.get("refine", {})
-    _require(_is_int(rf.get("max_simulations"), 0), "refine.max_simulations", rf.get("max_simulations"),
-             "an integer >= 0 (0: no local stage)")
+    # COBYLA (scipy) builds its first linear models on a simplex of d + 1 points and takes at least one step
+    # from it: a smaller budget would be overrun by that floor (studies.refine.local_refine, n_min)
+    _require(rf.get("max_simulations") == 0 or _is_int(rf.get("max_simulations"), len(free) + 2),
+             "refine.max_simulations", rf.get("max_simulations"),
+             f"0 (no local stage) or an integer >= {len(free) + 2} (len(free) + 2: COBYLA's first simplex of "
+             f"{len(free) + 1} points and one step)")
     for key in ("initial_step", "final_step"):
         _require(_is_number(rf.get(key)) and 0.0 < rf[key] <= 1.0, f"refine.{key}", rf.get(key),
                  "a number in (0, 1] (unit-cube coordinates)")
