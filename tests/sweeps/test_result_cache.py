@@ -255,3 +255,25 @@ def test_interrupted_write_leaves_the_old_entry_or_none(tmp_path, monkeypatch):
     with pytest.raises(KeyboardInterrupt):
         sim.api.sweep.compute_case(cfg.copy(), op, cache_file(cfg, op))
     assert [p for p in tmp_path.rglob("*") if p.is_file()] == []
+
+
+def test_a_dynamic_kind_warms_up_with_a_short_uncached_run(tmp_path, monkeypatch):
+    """warm_up of a time-domain job: its case with DYNAMIC_WARM_UP (two windows of one roller pass), not
+    the job's own settings, and nothing cached: a job whose case reaches no steady state is not cached, so
+    a warm-up with its own settings was computed twice (24 s of warm-up, then 26 s in its job, for a
+    case capped at 2 windows; an independent check of session 31). The short run warms its kind once
+    it integrated, converged or not; a quasi-static kind still warms up on its own cases."""
+    seen = []
+
+    def fake(cfg, op, path):
+        seen.append((OmegaConf.to_container(cfg.solver, resolve=True), path))
+        return xr.Dataset({"converged": (("design", "case"), [[False]])}, coords={"time": [0.0, 1e-3]})
+
+    monkeypatch.setattr(sim.api.sweep, "_simulate_case", fake)
+    cfg = sim.load_config(["solver=dynamic", f"output.cache_dir={tmp_path}", "load.Fa=3000", "load.Fr=1000"])
+    sim.api.sweep.warm_up([cfg, cfg])
+    assert len(seen) == 1                                     # one run warms the kind
+    solver, path = seen[0]
+    assert path is None and not list(tmp_path.rglob(f"*{CACHE_SUFFIX}"))
+    assert {k: solver["dynamic"][k] for k in sim.api.sweep.DYNAMIC_WARM_UP} == sim.api.sweep.DYNAMIC_WARM_UP
+    assert cfg.solver.dynamic.max_windows != 2                # the job's own config is untouched
