@@ -23,12 +23,12 @@ on the pmax front likewise ``pmax_max``. The front is the set of feasible, non-d
 of A and B together; each is simulated once more at the end (``sim.api.simulate_batch``) and
 must reproduce its objectives to 1e-9.
 
-Outputs under ``outputs/studies/<name>/pareto/``: per front ``points_<x>_<y>.nc`` (every point:
-parameters, objectives, margins, stage, on_front), ``front_<x>_<y>.nc`` (the re-simulated front
-designs, DATA.md layout), ``front_<x>_<y>.png``, and ``pareto.md``. Resuming: stage A lives in
-the study's Optuna storage (``<name>-pareto-<x>-<y>``), stage B's points in
-``local_<x>_<y>.nc`` (rewritten after every simulation; COBYLA replays its sequence against
-them), so running the command again repeats no simulation.
+Outputs under ``outputs/studies/<name>/pareto/``: per front ``points_<x>_<y>.nc`` (every point as
+a design: parameters, objectives at the load case, margins, stage, on_front; :func:`points_to_file`),
+``front_<x>_<y>.nc`` (the re-simulated front designs, DATA.md layout), ``front_<x>_<y>.png``, and
+``pareto.md``. Resuming: stage A lives in the study's Optuna storage (``<name>-pareto-<x>-<y>``),
+stage B's points in ``local_points.nc`` (rewritten after every simulation; COBYLA replays its
+sequence against them), so running the command again repeats no simulation.
 """
 import argparse
 import sys
@@ -43,7 +43,7 @@ from sim.api import simulate_batch
 from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic
 from studies.config import PARETO_OBJECTIVES, storage_spec
 from studies.constraints import FAILED, margins, rank_key
-from studies.evaluate import RECORDED, design_config, evaluate_design
+from studies.evaluate import RECORDED, case_dataset_coords, design_config, evaluate_design, table_to_file
 from studies.optimize import STUDY_ERRORS, elapsed_log, prepared_search, refused
 from studies.report import load_case_label
 from studies.refine import local_refine
@@ -113,15 +113,23 @@ class PointStore:
 
     def _save(self):
         rows = list(self.local.values())
-        ds = xr.Dataset({"x": (("point", "parameter"), np.array([r[0] for r in rows])),
-                         "objective_value": (("point", "objective"), np.array([r[1] for r in rows])),
-                         "margin": (("point", "constraint"), np.array([r[2] for r in rows])),
-                         "status": ("point", np.array([r[3] for r in rows], dtype=str)),
+        units = ", ".join(f"{p} {OBJECTIVES[p][2]}" for p in OBJECTIVES)
+        ds = xr.Dataset({"x": (("point", "parameter"), np.array([r[0] for r in rows]),
+                               {"long_name": "design parameters (units: " + ", ".join(
+                                   f"{n} {DESIGN_PARAMETERS[n][0]}" for n in self.search.space.names) + ")"}),
+                         "objective_value": (("point", "objective"), np.array([r[1] for r in rows]),
+                                             {"long_name": f"objectives, NaN without a result (units: {units})"}),
+                         "margin": (("point", "constraint"), np.array([r[2] for r in rows]),
+                                    {"units": "1", "long_name": "normalised constraint margin, <= 0 feasible"}),
+                         "status": ("point", np.array([r[3] for r in rows], dtype=str),
+                                    {"long_name": "simulation status"}),
                          "found_by": ("point", np.array([r[4] for r in rows], dtype=str),
                                       {"long_name": "front whose local runs simulated the point first"})},
                         coords={"parameter": list(self.search.space.names), "objective": list(OBJECTIVES),
-                                "constraint": list(self.search.limits.names)})
-        write_netcdf_atomic(ds, self.path)
+                                "constraint": list(self.search.limits.names)},
+                        attrs={**self.search.attrs(), "title": f"design search {self.search.study.name}: the "
+                               "Pareto fronts' local-stage points (resume store of studies.pareto)"})
+        write_netcdf_atomic(table_to_file(ds), self.path)
 
     def point(self, u, found_by):
         """(x, objectives, margins, status, found_by) of the unit-cube point u: stored, else
@@ -262,14 +270,30 @@ class ParetoFront:
         if idx.size:
             front[idx[non_dominated(F[idx], self.directions)]] = True
         return xr.Dataset(
-            {n: ("point", X[:, j], {"units": DESIGN_PARAMETERS[n][0]}) for j, n in enumerate(s.space.names)}
+            {n: ("point", X[:, j], {"units": DESIGN_PARAMETERS[n][0], "long_name": DESIGN_PARAMETERS[n][1]})
+             for j, n in enumerate(s.space.names)}
             | {p: ("point", F[:, j], {"units": OBJECTIVES[p][2], "long_name": OBJECTIVES[p][1]})
                for j, p in enumerate(self.pair)}
             | {"margin": (("point", "constraint"), M, {"units": "1", "long_name": "normalised margin, <= 0 feasible"}),
-               "feasible": ("point", feasible),
+               "feasible": ("point", feasible, {"long_name": "a result, every margin <= 0"}),
                "stage": ("point", stage, {"long_name": "nsga2 or epsilon_constraint"}),
                "on_front": ("point", front, {"long_name": "feasible and non-dominated among all points"})},
             coords={"point": np.arange(len(stage)), "constraint": self.margin_names})
+
+
+def points_to_file(front, ds):
+    """A front's :meth:`ParetoFront.table` in its DATA.md form for ``points_<x>_<y>.nc``: one design per
+    point along ``design``, the objectives per design and case at the study's one load case (its
+    coordinates along ``case``), pmax as the per-point tables name their race maximum
+    (studies.evaluate.table_to_file), and the search's provenance (its ``training.nc``'s attributes)."""
+    s = front.search
+    out = ds.rename({"point": "design"}).drop_vars("design")
+    for p in front.pair:
+        out[p] = out[p].expand_dims(case=1, axis=1)
+    out = out.assign_coords(case_dataset_coords(s.cycle))
+    out.attrs.update({**s.attrs(), "title": f"design search {s.study.name}: every point simulated for the front "
+                                            f"{front_name(front.pair)}"})
+    return table_to_file(out)
 
 
 def reference_point(front, label):
@@ -385,7 +409,7 @@ def main(argv=None):
     for front in fronts:
         ds = front.table()
         name = front_name(front.pair)
-        write_netcdf_atomic(ds, out / f"points_{name}.nc")
+        write_netcdf_atomic(points_to_file(front, ds), out / f"points_{name}.nc")
         verified = verify_front(front, ds)
         if verified is not None:
             write_netcdf_atomic(verified, out / f"front_{name}.nc")

@@ -59,10 +59,12 @@ def comparison_rows(search, best):
 
 
 def cross_validation(search, ds):
-    """k-fold CV of every modelled output on the final training data: {name: CrossValidation}."""
+    """k-fold CV of every modelled output on the final training data: ({name: CrossValidation},
+    {name: its units})."""
     s = search.study.surrogate
-    return cross_validate_outputs(search.training_sets(ds), search.space.bounds, search.settings, int(s.cv_folds),
-                                  float(s.interval))
+    sets = search.training_sets(ds)
+    return (cross_validate_outputs(sets, search.space.bounds, search.settings, int(s.cv_folds), float(s.interval)),
+            {q: units for q, (_, _, _, units) in sets.items()})
 
 
 def load_case_label(study):
@@ -95,50 +97,67 @@ def wrapped(label):
 
 
 def plot_history(search, vds, refs, path):
-    """Objective of every full simulation in run order; running best feasible; references (an
-    infeasible TSRB reference, e.g. the thesis design under the study's constraints, is marked)."""
+    """Objective of every full simulation in run order, numbered as training.nc's designs, the report
+    and the log (from 0); running best feasible; references (an infeasible TSRB reference, e.g. the
+    thesis design under the study's constraints, is marked). The legend sits beside the axes, where
+    it hides no point."""
     obj = search.objective
     y = search.objective_values(vds)
     feas = vds.feasible.values
-    n = np.arange(1, len(y) + 1)
-    fig, ax = plt.subplots(figsize=(7, 4))
+    n = np.arange(len(y))
+    fig, ax = plt.subplots(figsize=(9, 4), layout="constrained")
     ax.plot(n[feas], y[feas], "o", color="C0", label="feasible")
     ax.plot(n[~feas], y[~feas], "o", mfc="none", color="C7", label="infeasible")
     best = np.minimum.accumulate(np.where(feas, y, np.inf))
-    ax.step(n[np.isfinite(best)], best[np.isfinite(best)], where="post", color="C3", label="verified best")
+    if np.isfinite(best).any():
+        ax.step(n[np.isfinite(best)], best[np.isfinite(best)], where="post", color="C3", label="verified best")
     n0 = int(np.sum(vds.source.values == "initial"))
-    ax.axvline(n0 + 0.5, color="k", lw=0.8, ls=":", label="end of initial design")
+    ax.axvline(n0 - 0.5, color="k", lw=0.8, ls=":", label="end of initial design")
     for i, (label, record, m) in enumerate(refs):
         if np.isfinite(record["values"][obj]):
             infeasible = m is not None and violation(m) > 0.0
             ax.axhline(record["values"][obj], color=f"C{i + 1}", ls=":" if infeasible else "--", lw=1,
                        label=f"{label} (INFEASIBLE here)" if infeasible else label)
     several = len(search.cycle) > 1
-    ax.set_xlabel(f"full simulation{' (a design at every case)' if several else ''}")
+    ax.set_xlabel(f"full simulation (design index of training.nc){', a design at every case' if several else ''}")
     ax.set_ylabel(f"{obj}{', time-weighted' if several else ''} "
                   f"[{vds[obj].attrs.get('units', '')}]")
     ax.set_title(f"{search.study.name}: optimisation history\n{wrapped(load_case_label(search.study))}", fontsize=9)
-    ax.legend(fontsize=7)
-    fig.tight_layout()
+    fig.legend(loc="outside right upper", fontsize=7)
     write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
 
+PARITY_COLUMNS = 4      # panels per row of the parity figure (a duty cycle has one per output and case)
+
+
 def plot_parity(cv, units, path, load_label):
-    """Out-of-fold prediction against simulation, with the prediction intervals; ``units`` by name."""
+    """Out-of-fold prediction against simulation, with the prediction intervals; ``units`` by name.
+    Each panel's axes span the simulated and predicted values (5 % margin): an interval reaching
+    beyond them (a log output's upper bound at a point far outside the data, up to 1e31 N seen) is
+    cut at the frame rather than setting the scale."""
     names = list(cv)
-    fig, axes = plt.subplots(1, len(names), figsize=(3.4 * len(names), 3.4), squeeze=False)
-    for ax, q in zip(axes[0], names):
+    cols = min(PARITY_COLUMNS, len(names))
+    rows = -(-len(names) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(3.4 * cols, 3.4 * rows + 0.4), squeeze=False, layout="constrained")
+    for ax, q in zip(axes.ravel(), names):
         c = cv[q]
         ax.errorbar(c.y, c.mean, yerr=[c.mean - c.lower, c.upper - c.mean], fmt="o", ms=3, lw=0.6, alpha=0.7)
-        lim = [min(c.y.min(), c.lower.min()), max(c.y.max(), c.upper.max())]
+        lo = min(c.y.min(), c.mean.min())
+        hi = max(c.y.max(), c.mean.max())
+        pad = 0.05 * (hi - lo) if hi > lo else 0.05 * max(abs(hi), 1.0)
+        lim = [lo - pad, hi + pad]
         ax.plot(lim, lim, "k-", lw=0.8)
-        ax.set_xlabel(f"simulated {q} [{units.get(q, '1')}]")
-        ax.set_ylabel(f"predicted {q} [{units.get(q, '1')}]")
+        ax.set_xlim(lim)
+        ax.set_ylim(lim)
+        ax.set_xlabel(f"simulated {q} [{units.get(q, '1')}]", fontsize=8)
+        ax.set_ylabel(f"predicted {q} [{units.get(q, '1')}]", fontsize=8)
         ax.set_title(f"R2 {c.r2:.3f}, cover {c.coverage:.2f}\nRMSE {c.rmse:.3g}", fontsize=8)
-    fig.suptitle(f"surrogate parity, {int(round(100 * next(iter(cv.values())).level))} % intervals (k-fold CV); "
-                 f"{load_label}", fontsize=9)
-    fig.tight_layout()
+    for ax in axes.ravel()[len(names):]:
+        ax.set_visible(False)
+    level = int(round(100 * next(iter(cv.values())).level))
+    fig.suptitle(wrapped(f"surrogate parity, {level} % intervals (k-fold CV; intervals beyond the frame cut); "
+                         f"{load_label}"), fontsize=9)
     write_figure_atomic(fig, path, 120)
     plt.close(fig)
 
@@ -280,10 +299,10 @@ def write_report(search, ds, reason):
     best_m = margins(case_values(best_records), bearing, search.limits, 0.0 if best_record["status"] == "ok" else 1.0)
     rows = comparison_rows(search, ("verified best", best_record, best_m))
     attrs = {q: ds[q].attrs for q in ds.data_vars}
-    cv = cross_validation(search, ds)
+    cv, units = cross_validation(search, ds)
     plot_history(search, vds, rows[1:], out / "history.png")
     label = load_case_label(search.study)
-    plot_parity(cv, {q: a.get("units", "1") for q, a in attrs.items()}, out / "parity.png", label)
+    plot_parity(cv, units, out / "parity.png", label)
     # the pressure of the case with the largest axial load (the only one of a one-case study)
     k = int(np.argmax(search.cycle.column("Fa")))
     plot_pressure([("verified best", results[k])] + [(f"{r.label} {r.bearing}", r.datasets[k])

@@ -56,8 +56,9 @@ def test_fronts_are_feasible_non_dominated_verified_and_resume_without_simulatin
     run from its best needs 31-35 simulations to reach the pinion's thin feasible sliver, measured
     on session 14's physics; 25 had sufficed before by the path's luck): every front point meets the front's constraints and no feasible simulated
     point dominates it (checked here by the definition, independently of studies.pareto); the
-    re-simulated fronts (the command raises if they differ from the trials by more than 1e-9)
-    pass the DATA.md checker; a second run simulates nothing and writes the same fronts."""
+    re-simulated fronts (the command raises if they differ from the trials by more than 1e-9), the
+    points files and the local stage's resume store pass the DATA.md checker (the last two had no
+    attributes before session 31); a second run simulates nothing and writes the same fronts."""
     import subprocess
     import sys
     from pathlib import Path
@@ -76,7 +77,8 @@ def test_fronts_are_feasible_non_dominated_verified_and_resume_without_simulatin
         name = f"{pair[0]}_{pair[1]}"
         ds = xr.load_dataset(out / f"points_{name}.nc")
         first[name] = ds
-        F = np.column_stack([ds[p].values for p in pair])
+        # the file's form (studies.pareto.points_to_file): designs at the study's one case, pmax as pmax_any_race
+        F = np.column_stack([ds[{"pmax": "pmax_any_race"}.get(p, p)].isel(case=0).values for p in pair])
         signs = np.array([1.0 if OBJECTIVES[p][0] == "minimize" else -1.0 for p in pair])
         feasible = np.flatnonzero(ds.feasible.values)
         assert np.all((ds.margin.values[feasible] <= 0.0))
@@ -86,13 +88,15 @@ def test_fronts_are_feasible_non_dominated_verified_and_resume_without_simulatin
         assert (out / f"front_{name}.png").stat().st_size > 0
         checker = Path(__file__).resolve().parents[2].parent / "shared" / "tools" / "check_result.py"
         if checker.is_file():
-            run = subprocess.run([sys.executable, str(checker), str(out / f"front_{name}.nc")], capture_output=True,
-                                 text=True)
-            assert run.returncode == 0 and "0 finding(s)" in run.stdout, run.stdout + run.stderr
+            for nc in (f"front_{name}.nc", f"points_{name}.nc", "local_points.nc"):
+                run = subprocess.run([sys.executable, str(checker), str(out / nc)], capture_output=True, text=True)
+                assert run.returncode == 0 and "0 finding(s)" in run.stdout, run.stdout + run.stderr
     n_local = xr.load_dataset(out / "local_points.nc").sizes["point"]
     capsys.readouterr()
     assert main(args) == 0
     assert xr.load_dataset(out / "local_points.nc").sizes["point"] == n_local
     assert "10 of 10 simulations already" in capsys.readouterr().out
-    for name, ds in first.items():
-        xr.testing.assert_identical(xr.load_dataset(out / f"points_{name}.nc"), ds)
+    for name, ds in first.items():      # the same points; only the time the file was written differs
+        again = xr.load_dataset(out / f"points_{name}.nc")
+        assert again.attrs.pop("created") >= ds.attrs.pop("created")
+        xr.testing.assert_identical(again, ds)
