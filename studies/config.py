@@ -230,6 +230,9 @@ def validate(study):
     _require(isinstance(free, list) and len(free) > 0 and len(set(free)) == len(free)
              and set(free) <= set(DESIGN_PARAMETERS), "free", free,
              f"a non-empty list of distinct names from {list(DESIGN_PARAMETERS)}")
+    unknown = sorted(set(s.get("bounds", {})) - set(DESIGN_PARAMETERS))
+    _require(not unknown, f"bounds.{unknown[0] if unknown else ''}", s.get("bounds", {}).get(unknown[0]) if unknown else None,
+             f"bounds of the design parameters {list(DESIGN_PARAMETERS)} only (a typo would bound nothing)")
     for name in free:
         b = s.get("bounds", {}).get(name)
         _require(isinstance(b, list) and len(b) == 2 and all(map(_is_number, b)) and b[0] < b[1],

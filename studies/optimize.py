@@ -93,6 +93,10 @@ def elapsed_log():
     return log
 
 
+#: exit status of a search interrupted by Ctrl-C (128 + SIGINT, as a shell reports it)
+INTERRUPTED = 130
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(prog="python -m studies.optimize", description=__doc__.split("\n\n")[0],
                                      epilog="Overrides: study=NAME selects conf/study/NAME.yaml; study.KEY=VALUE "
@@ -109,6 +113,10 @@ def main(argv=None):
     except STUDY_ERRORS as err:
         remove_if_empty(new)
         return refused(err)
+    except KeyboardInterrupt:   # Ctrl-C: every finished simulation is on disk (written after each)
+        print(f"\ninterrupted: the simulations finished so far are in {search.out}/; the same command resumes "
+              "from them", file=sys.stderr)
+        return INTERRUPTED
     print(write_report(search, ds, reason))
     print(f"\nwritten to {search.out}/ in {time.perf_counter() - t0:.1f} s")
     _, key = search.best(ds)

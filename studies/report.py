@@ -22,6 +22,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
+from studies.config import for_solver, simulation_overrides  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
 from studies.cycle import DutyCycle  # noqa: E402
 from studies.evaluate import STATUS, case_values, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
@@ -271,6 +272,19 @@ def resimulation_text(search, ds, i, best_record):
             f"({same}); status {best_record['status']}.")
 
 
+def resimulate_command(search, bearing):
+    """The command line that simulates design ``bearing`` (name -> value) as the search did, its values
+    to full precision (repr): at the study's load case, or at each case of its duty cycle (the loads
+    left as ``<...>`` placeholders to fill from the per-case table)."""
+    s = search.study
+    loads = (" ".join(f"load.{k}={float(s.load[k])!r}" for k in ("Fa", "Fr", "speed", "tilt", "oil_temperature"))
+             if len(search.cycle) == 1 else "load.Fa=<Fa> load.Fr=<Fr> load.speed=<speed> "
+             f"load.tilt={float(s.load.tilt)!r} load.oil_temperature={float(s.load.oil_temperature)!r}")
+    values = " ".join(f"bearing.{k}={float(v)!r}" for k, v in bearing.items() if v is not None)
+    extra = " ".join(for_solver(simulation_overrides(search.overrides)))
+    return f"python -m sim.run bearing={s.bearing} lubricant={s.lubricant} {values} {loads}" + (f" {extra}" if extra else "")
+
+
 def life_text(search, best_record):
     """The rating life over the cycle in words: P_eq and L10 of the verified best and of the reference TRB."""
     trb = search.references["reference TRB"]
@@ -329,8 +343,8 @@ def write_report(search, ds, reason):
         load_text = (f"Load case Fa = {s.load.Fa:g} N, Fr = {s.load.Fr:g} N, {s.load.speed:g} rpm, tilt {s.load.tilt:g} deg; "
                      f"objective `{obj}` (minimised)")
     text = "\n".join([
-        f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}" +
-        (f" over the {load_case_label(s)}" if several else ""),
+        f"# Design search `{s.name}`: {s.bearing} vs {s.reference_trb} and {s.thesis_design}, "
+        f"{'over the ' if several else ''}{load_case_label(s)}",
         "",
         f"{load_text}; constrained Bayesian optimisation, "
         f"{s.budget.verify_per_round} designs a round; surrogate intervals "
@@ -344,12 +358,15 @@ def write_report(search, ds, reason):
         "",
         f"Verified best ({feasible}), simulation #{i}: {params}",
         "",
+        f"Simulate it again (values to full precision; `best_design.nc` holds its results"
+        f"{', the loads of each case in the table below' if several else ''}): `{resimulate_command(search, bearing)}`",
+        "",
         resimulation_text(search, ds, i, best_record),
         "",
         *([f"The verified best has{' over the duty cycle' if several else ''} its {words}.", ""] if words else []),
         *([life_text(search, best_record), ""] if several else []),
         *([local, ""] if local else []),
-        *([f"## Duty cycle: {load_case_label(s)}", "", "Verified best at every case, beside the reference TRB "
+        *([f"## Per case of the {load_case_label(s)}", "", "Verified best at every case, beside the reference TRB "
            f"{s.reference_trb} (full simulations):", "", case_table(search, best_runs), "",
            "Cycle values (table below): objective time-weighted, pmax and edge stress the worst case, C_eff the least, "
            "L10 over the cycle.", ""] if several else []),

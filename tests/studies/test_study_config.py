@@ -148,10 +148,11 @@ def test_bad_included_designs_fail_at_start(pinion, include, words):
     ("study.bounds.alpha=[10,95]", ["study.bounds.alpha = [10.0, 95.0]", "upper end", "bearing.alpha = 95.0",
                                     "(0, 60)"]),
     ("study.bounds.PCR=[-5,100]", ["study.bounds.PCR = [-5.0, 100.0]", "lower end", "bearing.PCR = -5.0"]),
+    ("+study.bounds.kapa=[0.9,0.99]", ["study.bounds.kapa = [0.9, 0.99]", "design parameters", "'kappa'"]),
 ])
 def test_a_bound_outside_the_bearing_schema_is_refused_before_any_simulation(override, words):
-    """A search bound the bearing schema does not allow (kappa < 1, alpha <= 60 deg, PCR > 0) is refused
-    at start, naming the study key, which end and the schema's range; before, the study simulated
+    """A search bound the bearing schema does not allow (kappa < 1, alpha <= 60 deg, PCR > 0), or of a
+    name that is no design parameter (a typo, which bounded nothing), is refused at start, naming the study key, which end and the schema's range; before, the study simulated
     its references and initial designs and then stopped at the first design beyond the bound,
     naming that design's value (an independent check of session 31)."""
     with pytest.raises(StudyConfigError) as err:
