@@ -453,13 +453,6 @@ class BearingModel:
                 reports.append(without_rest[2])
                 unrested = int(np.count_nonzero(rollers.Q.sum(axis=1) == 0.0))
                 converged = True
-                if start is None or start["solver_info"]["unrested_rollers"] == 0:
-                    # once per case: not again from a start that was warned about (the friction-load
-                    # coupling's later solves, sim.api.friction_model.coupled_solution)
-                    log.warning("%s at Fa = %g N, Fr = %g N, %g rpm, tilt %g deg: no equilibrium with the %d "
-                                "rollers outside the load zone resting; they are left unloaded (their centrifugal "
-                                "contact and its rolling loss neglected)", g.type, op.Fa, op.Fr, op.speed_rpm,
-                                op.tilt_deg, unrested)
         wall_time_s = time.perf_counter() - t0
         pressure = self.hertz_pressure(q)
         last = reports[-1]
@@ -527,6 +520,12 @@ def case_results(model: BearingModel, op: OperatingPoint, raw, output_cfg):
         log.warning("%s at Fa = %g N, Fr = %g N, %g rpm, tilt %g deg: %s; reported as not converged",
                     g.type, op.Fa, op.Fr, op.speed_rpm, op.tilt_deg, status)
         return res | {"converged": False, "status": status}
+    if res["unrested_rollers"]:
+        # said of the case's final solve (the friction-load coupling solves it again, and a later solve
+        # may rest rollers the first one left unloaded: the warning then contradicted the result)
+        log.warning("%s at Fa = %g N, Fr = %g N, %g rpm, tilt %g deg: no equilibrium with the %d rollers outside "
+                    "the load zone resting; they are left unloaded (their centrifugal contact and its rolling loss "
+                    "neglected)", g.type, op.Fa, op.Fr, op.speed_rpm, op.tilt_deg, res["unrested_rollers"])
     j = int(np.argmax(raw["Q"].sum(axis=1)))  # most loaded roller
     xi_rel = roller_shift_relative_to_inner_ring(g, raw["poses"][:, 0], raw["ring"], np.radians(op.tilt_deg))
     thr = float(output_cfg["contact_pressure_threshold"])

@@ -784,7 +784,9 @@ class SweepCallback(Callback):
         log.info("sweep: numba kernels compiled or loaded in this process in %.1f s", time.perf_counter() - t0)
 
     def on_multirun_end(self, config, **kwargs):
-        """Collect ``sweep.nc``; exit 1 with a summary when a job left no readable result."""
+        """Collect ``sweep.nc``; exit 1 with a summary when a job left no readable result. Points without a
+        result (an error, not converged) are results of their jobs: exit 0, with their count as the last
+        line on stderr (:func:`unsolved_summary`; README, "Errors and exit status")."""
         sweep_dir = Path(config.hydra.sweep.dir)
         if not (sweep_dir / MANIFEST).exists():
             return
@@ -797,6 +799,22 @@ class SweepCallback(Callback):
             getattr(import_module(module), name)(path)
         if incomplete:
             refuse(incomplete_summary(path, incomplete), status=1)
+        unsolved = unsolved_summary(path)
+        if unsolved:        # every job left a result (exit 0), but some points of it are none: said last, on stderr
+            print(unsolved, file=sys.stderr, flush=True)
+
+
+def unsolved_summary(path):
+    """One line for a collected ``sweep.nc`` whose cases include some without a result (not converged or
+    failed with an error: its failure table), or "" when every case converged."""
+    with xr.open_dataset(path) as ds:
+        if ds.sizes.get("failure", 0) == 0:
+            return ""
+        reasons = {str(r): int((ds.failed_reason.values == r).sum()) for r in np.unique(ds.failed_reason.values)}
+        total = ds.sizes["design"] * ds.sizes["case"]
+    return (f"{path}: {sum(reasons.values())} of {total} cases without a result ("
+            + ", ".join(f"{n} {r}" for r, n in reasons.items()) + "; listed in its failed_* variables); exit "
+            "status 0: every job left its result")
 
 
 # ------------------------------------------------------------------ the collector

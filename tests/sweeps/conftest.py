@@ -27,4 +27,5 @@ def friction_sweep(tmp_path_factory):
     root = tmp_path_factory.mktemp("friction")
     out = multirun(FRICTION_SWEEP, root / "sweep", root / "cache", fast=False)
     assert out.returncode == 0, out.stderr[-3000:]
-    return SimpleNamespace(dir=root / "sweep", nc=root / "sweep" / "sweep.nc", log=out.stdout + out.stderr)
+    return SimpleNamespace(dir=root / "sweep", nc=root / "sweep" / "sweep.nc", log=out.stdout + out.stderr,
+                           stderr=out.stderr)

@@ -103,6 +103,10 @@ def test_sweep_with_friction_collects_its_converged_jobs_and_reports_the_refused
     np.testing.assert_allclose(ds.torque_component.values[1].sum(axis=-1), ds.torque.values[1], rtol=1e-9)
     assert "roller_skew" not in ds            # friction.skew off: no skew outputs, no placeholders
     assert list(ds.failed_reason.values) == ["not converged"] and list(ds.failed_case.values) == [1]
+    # exit 0 (every job left its result), the points without one counted in the last line on stderr
+    assert friction_sweep.stderr.strip().splitlines()[-1].endswith(
+        "1 of 4 cases without a result (1 not converged; listed in its failed_* variables); exit status 0: every "
+        "job left its result")
     assert "static safety" in str(ds.failed_message.values[0])
     if CHECKER.exists():
         chk = subprocess.run([sys.executable, str(CHECKER), str(sweep / "sweep.nc")], capture_output=True, text=True)
