@@ -402,6 +402,27 @@ SCHEMAS = {"bearing": BearingConfig, "material": MaterialConfig, "lubricant": Lu
 
 
 # ---------------------------------------------------------------------------- node checks
+def undeclared_key(dotted):
+    """Why a dotted config key of a schema group (``bearing.kapa``, ``friction.skew.pocket_clerance``) is
+    no declared key, or "" when it is one (or names no schema group: Hydra's own keys, groups without a
+    schema). The check of command-line overrides before Hydra composes them (sim.run), which would
+    refuse such a key with its own multi-line message and exit status 1."""
+    group, *path = str(dotted).split(".")
+    schema = SCHEMAS.get(group)
+    prefix = group
+    for part in path:
+        if schema is None:
+            return ""
+        found = {f.name: f for f in fields(schema)}
+        if part not in found:
+            close = difflib.get_close_matches(part, list(found), n=1)
+            return f"{prefix}.{part} is not a config key" + (f" (did you mean {prefix}.{close[0]}?)" if close else "")
+        f = found[part]
+        schema = f.metadata.get("schema") or (f.type if is_dataclass(f.type) else None)
+        prefix = f"{prefix}.{part}"
+    return ""
+
+
 def field_check(schema, name):
     """The check (Number, Choice, ...) of field ``name`` of a group dataclass ``schema``."""
     return next(f for f in fields(schema) if f.name == name).metadata["check"]

@@ -28,6 +28,7 @@ from omegaconf import DictConfig
 from sim import io
 from sim.api.cli import PROJECT_ERRORS, refuse
 from sim.api.sweep import NEW_RUN_DIRS, WriteError, remove_stale_files, run_cases, run_job, write_result
+from sim.config_schema import undeclared_key
 
 
 def friction_summary(case):
@@ -100,5 +101,15 @@ def main(cfg: DictConfig) -> None:
         raise SystemExit(1)
 
 
+def undeclared_overrides(argv):
+    """The command line's overrides of undeclared keys (sim.config_schema.undeclared_key): ``key=value``
+    items, not flags, additions (``+``, which sim.api.schema.validate refuses itself) or deletions."""
+    keys = (a.split("=", 1)[0] for a in argv if "=" in a and not a.startswith(("-", "+", "~")))
+    return [p for p in map(undeclared_key, keys) if p]
+
+
 if __name__ == "__main__":
+    problems = undeclared_overrides(sys.argv[1:])
+    if problems:    # one line and exit 2, as any refused input, where Hydra would print several and exit 1
+        refuse("run refused before anything ran: " + "; ".join(problems))
     main()

@@ -26,8 +26,12 @@ from tests.robustness.common import FAST, REPO, assert_refused, run
      None),
     (["material.nu=0.7"], ["material.nu = 0.7"], None),
     (["+bearing.kapa=0.9"], ["bearing.kapa is not a config key (did you mean bearing.kappa?)"], None),
+    # without "+" Hydra refused it itself, in six lines with exit status 1 (an independent check of session 31)
+    (["bearing.kapa=0.9"], ["bearing.kapa is not a config key (did you mean bearing.kappa?)"], None),
+    (["friction.skew.pocket_clerance=0.1"],
+     ["friction.skew.pocket_clerance is not a config key (did you mean friction.skew.pocket_clearance?)"], None),
 ], ids=["Z_200", "PCR_1e30", "R_33", "aPk_9", "two_bad_values", "trb_end_radius", "trb_end_sphere_conforms", "nu",
-         "unknown_key"])
+         "added_unknown_key", "unknown_key", "unknown_nested_key"])
 def test_single_run_refuses_in_one_line_and_makes_no_folder(tmp_path, overrides, fragments, not_blamed):
     run_dir = tmp_path / "run"
     out = run(["-m", "sim.run", *overrides, *FAST, f"hydra.run.dir={run_dir}", "output.cache_dir=null"], tmp_path)
