@@ -164,7 +164,7 @@ def check_simulations(study, overrides=None):
 
 def _check_bounds_in_schema(study, overrides):
     """Each end of each free parameter's ``study.bounds`` set in the template bearing and checked
-    against the bearing schema (:func:`sim.api.schema.validate`: kappa in (0, 1), alpha in (0, 60]
+    against the bearing schema (:func:`sim.api.schema.validate`: kappa in (0, 1), alpha in (0, 60)
     deg, ...): a bound outside it would otherwise stop the study at the first sampled design beyond
     it, after simulations ran. Combined feasibility (a roller that does not fit) stays a failed
     design, as for any point (:mod:`sim.geometry`)."""
@@ -299,7 +299,7 @@ def validate(study):
     rf = s.get("refine", {})
     # COBYLA (scipy) builds its first linear models on a simplex of d + 1 points and takes at least one step
     # from it: a smaller budget would be overrun by that floor (studies.refine.local_refine, n_min)
-    _require(rf.get("max_simulations") == 0 or _is_int(rf.get("max_simulations"), len(free) + 2),
+    _require(_is_int(rf.get("max_simulations"), 0) and (rf["max_simulations"] == 0 or rf["max_simulations"] >= len(free) + 2),
              "refine.max_simulations", rf.get("max_simulations"),
              f"0 (no local stage) or an integer >= {len(free) + 2} (len(free) + 2: COBYLA's first simplex of "
              f"{len(free) + 1} points and one step)")

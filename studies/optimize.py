@@ -103,9 +103,19 @@ def main(argv=None):
                                             "changes one key; solver.*, material.*, ... go to every simulation.")
     parser.add_argument("overrides", nargs="*", help="Hydra-style overrides, e.g. study.budget.max_simulations=200")
     args = parser.parse_args(argv)
+    try:
+        return _optimize(args.overrides)
+    except KeyboardInterrupt:   # Ctrl-C: training.nc holds the simulations of every finished chunk and round
+        print("\ninterrupted: the simulations of the finished rounds are kept in the study folder (training.nc); "
+              "the same command resumes from them", file=sys.stderr)
+        return INTERRUPTED
+
+
+def _optimize(overrides):
+    """:func:`main`'s search of the command-line ``overrides``: its exit status."""
     t0 = time.perf_counter()
     try:
-        search, new = prepared_search(args.overrides, elapsed_log())
+        search, new = prepared_search(overrides, elapsed_log())
     except STUDY_ERRORS as err:
         return refused(err)
     try:
@@ -113,10 +123,6 @@ def main(argv=None):
     except STUDY_ERRORS as err:
         remove_if_empty(new)
         return refused(err)
-    except KeyboardInterrupt:   # Ctrl-C: every finished simulation is on disk (written after each)
-        print(f"\ninterrupted: the simulations finished so far are in {search.out}/; the same command resumes "
-              "from them", file=sys.stderr)
-        return INTERRUPTED
     print(write_report(search, ds, reason))
     print(f"\nwritten to {search.out}/ in {time.perf_counter() - t0:.1f} s")
     _, key = search.best(ds)

@@ -404,8 +404,9 @@ def main(argv=None):
     fronts = [ParetoFront(store, pair) for pair in search.study.pareto.fronts]
     for front in fronts:   # stage A of every front first: stage B then starts from all their points
         front.explore(int(search.study.pareto.trials), log)
-    for k, front in enumerate(fronts):
-        front.epsilon_constraint(int(search.study.pareto.levels), [f.name for f in fronts[:k]], log)
+    if int(search.study.refine.max_simulations) > 0:     # 0: no local stage (stage B), as for a search
+        for k, front in enumerate(fronts):
+            front.epsilon_constraint(int(search.study.pareto.levels), [f.name for f in fronts[:k]], log)
     for front in fronts:
         ds = front.table()
         name = front_name(front.pair)

@@ -150,7 +150,9 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
 
     shift = np.zeros(len(names)) if backoff is None else np.asarray(backoff, dtype=float)
 
-    aimed = {}      # per point, the tightening of the run that evaluated it first (its back-off: tightening x shift)
+    # per point, the tightening of the run that evaluated it first (its back-off: tightening x shift); the
+    # starts were found before any run (COBYLA evaluates its start first, with its own tightening): none
+    aimed = {u.tobytes(): 0.0 for u in starts}
 
     def constraints(u, tightening):
         aimed.setdefault(np.clip(np.asarray(u, dtype=float), 0.0, 1.0).tobytes(), tightening)

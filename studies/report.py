@@ -12,6 +12,7 @@ Writes into the study folder:
   the time-domain solver with skew and tilt free, its torque and skew in report.md
   (:func:`studies.verify.dynamic_verification`).
 """
+import shlex
 import textwrap
 
 import matplotlib
@@ -24,7 +25,7 @@ import xarray as xr  # noqa: E402
 from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
 from studies.config import for_solver, simulation_overrides  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
-from studies.cycle import DutyCycle  # noqa: E402
+from studies.cycle import LOAD_KEYS, DutyCycle  # noqa: E402
 from studies.evaluate import STATUS, case_values, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
 from studies.verify import dynamic_verification  # noqa: E402
 from surrogate import cross_validate_outputs  # noqa: E402
@@ -76,10 +77,13 @@ def load_case_label(study):
         return (f"Fa {float(L.Fa) / 1e3:g} kN, Fr {float(L.Fr) / 1e3:g} kN, {float(L.speed):g} rpm, "
                 f"tilt {float(L.tilt):g} deg, oil {float(L.oil_temperature):g} degC")
     cycle = DutyCycle.from_config(study)
+    # tilt and oil once where every case shares them (a cycle's entries may set their own), else per case
+    shared = all(c[k] == cycle.cases[0][k] for c in cycle.cases for k in ("tilt", "oil_temperature"))
     cases = "; ".join(f"{c['Fa'] / 1e3:g}/{c['Fr'] / 1e3:g} kN {c['speed']:g} rpm {w:g}"
+                      + ("" if shared else f" (tilt {c['tilt']:g} deg, oil {c['oil_temperature']:g} degC)")
                       for c, w in zip(cycle.cases, cycle.share))
-    return (f"duty cycle Fa/Fr, speed, share: {cases}; tilt {cycle.cases[0]['tilt']:g} deg, "
-            f"oil {cycle.cases[0]['oil_temperature']:g} degC")
+    return (f"duty cycle Fa/Fr, speed, share: {cases}"
+            + (f"; tilt {cycle.cases[0]['tilt']:g} deg, oil {cycle.cases[0]['oil_temperature']:g} degC" if shared else ""))
 
 
 def ratio_in_words(name, value, reference_label, reference_value):
@@ -272,17 +276,16 @@ def resimulation_text(search, ds, i, best_record):
             f"({same}); status {best_record['status']}.")
 
 
-def resimulate_command(search, bearing):
-    """The command line that simulates design ``bearing`` (name -> value) as the search did, its values
-    to full precision (repr): at the study's load case, or at each case of its duty cycle (the loads
-    left as ``<...>`` placeholders to fill from the per-case table)."""
+def resimulate_commands(search, bearing):
+    """The command lines that simulate design ``bearing`` (name -> value) as the search did, one per
+    load case of its duty cycle (one for a single case), every value to full precision (repr) and each
+    token shell-quoted."""
     s = search.study
-    loads = (" ".join(f"load.{k}={float(s.load[k])!r}" for k in ("Fa", "Fr", "speed", "tilt", "oil_temperature"))
-             if len(search.cycle) == 1 else "load.Fa=<Fa> load.Fr=<Fr> load.speed=<speed> "
-             f"load.tilt={float(s.load.tilt)!r} load.oil_temperature={float(s.load.oil_temperature)!r}")
-    values = " ".join(f"bearing.{k}={float(v)!r}" for k, v in bearing.items() if v is not None)
-    extra = " ".join(for_solver(simulation_overrides(search.overrides)))
-    return f"python -m sim.run bearing={s.bearing} lubricant={s.lubricant} {values} {loads}" + (f" {extra}" if extra else "")
+    values = [f"bearing.{k}={float(v)!r}" for k, v in bearing.items() if v is not None]
+    extra = for_solver(simulation_overrides(search.overrides))
+    return [shlex.join(["python", "-m", "sim.run", f"bearing={s.bearing}", f"lubricant={s.lubricant}", *values,
+                        *(f"load.{k}={float(case[k])!r}" for k in LOAD_KEYS), *extra])
+            for case in search.cycle.cases]
 
 
 def life_text(search, best_record):
@@ -316,7 +319,8 @@ def write_report(search, ds, reason):
     cv, units = cross_validation(search, ds)
     plot_history(search, vds, rows[1:], out / "history.png")
     label = load_case_label(search.study)
-    plot_parity(cv, units, out / "parity.png", label)
+    if cv:      # outputs with fewer points than surrogate.cv_folds are not cross-validated
+        plot_parity(cv, units, out / "parity.png", label)
     # the pressure of the case with the largest axial load (the only one of a one-case study)
     k = int(np.argmax(search.cycle.column("Fa")))
     plot_pressure([("verified best", results[k])] + [(f"{r.label} {r.bearing}", r.datasets[k])
@@ -335,8 +339,8 @@ def write_report(search, ds, reason):
     words = "; ".join(w for w in words if w)
     pmax_limits = "/".join(f"{v:.1f}" for v in search.limits.pmax_max)
     if several:
-        load_text = (f"Duty cycle of {len(search.cycle)} load cases (table below; tilt {s.load.tilt:g} deg, oil "
-                     f"{s.load.oil_temperature:g} degC); objective `{obj}` time-weighted over the cycle "
+        load_text = (f"Duty cycle of {len(search.cycle)} load cases (title and table below); objective `{obj}` "
+                     f"time-weighted over the cycle "
                      f"(sum of share x per-case value, minimised), constraints at every case, L10 over the cycle from "
                      f"the ISO 281 equivalent load (studies.cycle)")
     else:
@@ -358,8 +362,10 @@ def write_report(search, ds, reason):
         "",
         f"Verified best ({feasible}), simulation #{i}: {params}",
         "",
-        f"Simulate it again (values to full precision; `best_design.nc` holds its results"
-        f"{', the loads of each case in the table below' if several else ''}): `{resimulate_command(search, bearing)}`",
+        "Simulate it again (values to full precision; `best_design.nc` holds its results)"
+        + (", case by case:" if several else ":"),
+        "",
+        *(f"    {command}" for command in resimulate_commands(search, bearing)),
         "",
         resimulation_text(search, ds, i, best_record),
         "",

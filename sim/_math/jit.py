@@ -28,10 +28,12 @@ import hashlib
 import os
 import re
 import shutil
+import time
 from functools import lru_cache
 from pathlib import Path
 
 import numba
+import numba.core.event
 
 SIM_ROOT = Path(__file__).resolve().parents[1]     # the whole sim/ package, every layer
 #: characters of the SHA-256 hex digest in the cache folder name (64 bits: no collision in practice)
@@ -128,3 +130,43 @@ def _in_cache_dir(decorator, func):
         return decorator(func)
     finally:
         numba.config.CACHE_DIR = previous
+
+
+# ---------------------------------------------------------------------------- time spent compiling
+class _CompileClock(numba.core.event.Listener):
+    """Seconds this process spent compiling numba functions: numba broadcasts "numba:compile" around
+    each compile (not around a load from its on-disk cache; numba's Event API), nested for the
+    callees a compile compiles; only the outermost count, once each."""
+
+    def __init__(self):
+        self.depth = 0
+        self.started = 0.0
+        self.seconds = 0.0
+
+    def on_start(self, event):
+        if self.depth == 0:
+            self.started = time.perf_counter()
+        self.depth += 1
+
+    def on_end(self, event):
+        self.depth -= 1
+        if self.depth == 0:
+            self.seconds += time.perf_counter() - self.started
+
+
+_COMPILE_CLOCK = _CompileClock()
+numba.core.event.register("numba:compile", _COMPILE_CLOCK)
+
+
+def clock():
+    """A mark for :func:`solver_seconds`: (wall time [s], compile time so far [s])."""
+    return time.perf_counter(), _COMPILE_CLOCK.seconds
+
+
+def solver_seconds(mark):
+    """Wall seconds since ``mark`` (:func:`clock`) less the numba compiling within them: a case's
+    ``wall_time`` (DATA.md: the solver time for the case), which the first case of a process on a
+    new machine otherwise reported as ~130 s of compiling for a 0.3 s solve (an independent check of
+    session 31)."""
+    wall, compiled = mark
+    return (time.perf_counter() - wall) - (_COMPILE_CLOCK.seconds - compiled)

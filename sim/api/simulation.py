@@ -21,11 +21,11 @@ small by doing once per configuration what does not depend on the case:
 import concurrent.futures as cf
 import math
 import os
-import time
 from collections import OrderedDict
 
 from omegaconf import OmegaConf
 
+from sim._math.jit import clock, solver_seconds
 from sim.api.bearing_model import BearingModel, SolverSettings, case_results
 from sim.api import dynamic_model
 from sim.api.cases import operating_points
@@ -76,7 +76,7 @@ def solve_case(model, friction, op, output_cfg):
     A case counts as converged only when both the load distribution and the traction
     kinematics converged; otherwise only its status and the load-derived P, P0 are kept.
     """
-    t0 = time.perf_counter()
+    t0 = clock()
     if friction is None:
         return case_results(model, op, model.solve(op), output_cfg)
     raw, fr = coupled_solution(model, friction, op)
@@ -85,10 +85,12 @@ def solve_case(model, friction, op, output_cfg):
 
 def combined_results(model, op, raw, fr, output_cfg, t0):
     """:func:`solve_case`'s outputs of the coupled solution (raw, fr) of
-    :func:`sim.api.friction_model.coupled_solution` begun at ``time.perf_counter()`` = t0."""
-    if fr is None:      # no load solution, or beyond the static limit: case_results reports why
-        return case_results(model, op, raw, output_cfg)
+    :func:`sim.api.friction_model.coupled_solution` begun at the mark t0 (sim._math.jit.clock); its
+    wall_time is the solver time since then, the numba compiling left out (jit.solver_seconds)."""
     res = case_results(model, op, raw, output_cfg)
+    res["wall_time"] = solver_seconds(t0)
+    if fr is None:      # no load solution, or beyond the static limit: case_results reports why
+        return res
     kinematics_converged, coupling_converged = fr.pop("friction_converged"), fr.pop("coupling_converged")
     failure = fr.pop("friction_failure")
     if not (res["converged"] and kinematics_converged and coupling_converged):
@@ -101,7 +103,6 @@ def combined_results(model, op, raw, fr, output_cfg, t0):
     fr.pop("ring_loads")
     fr.pop("kinematics")
     res.update(fr)
-    res["wall_time"] = time.perf_counter() - t0
     return res
 
 
@@ -230,7 +231,7 @@ def _simulate_dynamic(cfg, plain):
                          "cage are driven by the traction)")
     op = ops[0]
     model.check_limits(op)
-    t0 = time.perf_counter()
+    t0 = clock()
     dyn = plain["solver"]["dynamic"]
     try:
         dcase = dynamic_model.prepare(model, friction, op, dyn)
@@ -242,7 +243,7 @@ def _simulate_dynamic(cfg, plain):
         series = None
     else:
         integ = dynamic_model.run(dcase)
-        summary, series = dynamic_model.outputs(model, op, dcase, integ, time.perf_counter() - t0, plain["output"])
+        summary, series = dynamic_model.outputs(model, op, dcase, integ, solver_seconds(t0), plain["output"])
     return build_dynamic_dataset(model.geometry, op, summary, series, config_yaml(cfg, plain), model.settings, dyn,
                                  optional_outputs(friction, dynamic=True))
 

@@ -64,3 +64,20 @@ def test_old_versions_cache_folders_are_pruned_to_the_most_recently_used(tmp_pat
     # the current folder is now the most recently used: pruning again for an older version keeps it
     assert jit.prune_cache_folders(old[0], keep) == []
     assert current.is_dir()
+
+
+def test_the_solver_time_leaves_out_numba_compiling():
+    """A case's wall_time (DATA.md: the solver time for the case) leaves out the numba compiling within
+    it (jit.solver_seconds, from numba's "numba:compile" events): the first case of a process on a new
+    machine reported ~130 s of compiling for a 0.3 s solve (an independent check of session 31). A
+    window spent almost only compiling a fresh function counts almost nothing."""
+    import numba
+
+    mark = jit.clock()
+    add = numba.njit(lambda x: x + 1.5)    # no cache: compiled at the first call
+    assert add(1.0) == 2.5
+    solver = jit.solver_seconds(mark)
+    end = jit.clock()
+    wall, compiled = end[0] - mark[0], end[1] - mark[1]
+    assert 0.0 < compiled <= wall
+    assert 0.0 <= solver <= wall - compiled < 0.5 * wall      # read before the end mark: at most its window

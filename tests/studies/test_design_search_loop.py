@@ -4,6 +4,7 @@ The simulation runs for real (pinion study, 10 slices, friction off, objective p
 the test does not depend on the friction model): 8 Sobol points, then rounds of 25 surrogate
 trials verifying 2 candidates each, up to 12 full simulations.
 """
+import shlex
 import subprocess
 import sys
 from pathlib import Path
@@ -81,9 +82,10 @@ def test_report_writes_verified_results_and_plots(finished):
     # the load case in the title, and the command that simulates the best again: its values to full
     # precision reproduce the stored result bit for bit (the 4-digit table gave 7e-4 off; session 31)
     assert text.splitlines()[0].endswith("Fa 35 kN, Fr 0 kN, 1100 rpm, tilt 0 deg, oil 50 degC")
-    command = next(line for line in text.splitlines() if line.startswith("Simulate it again")).split("`")[-2]
+    lines = text.splitlines()
+    command = lines[next(k for k, line in enumerate(lines) if line.startswith("Simulate it again")) + 2].strip()
     assert command.startswith("python -m sim.run bearing=tsrb_pinion lubricant=pinion_oil bearing.PCR=")
-    again = sim.simulate(sim.load_config(command.split()[3:]))
+    again = sim.simulate(sim.load_config(shlex.split(command)[3:]))
     assert float(again.pmax.max()) == float(ds.pmax.isel(design=i).max())
 
 
@@ -227,5 +229,5 @@ def test_ctrl_c_ends_the_main_job_with_one_line_and_status_130(tmp_path, monkeyp
     monkeypatch.setattr(loop.DesignSearch, "run", interrupted)
     assert optimize.main([*TINY, "study.name=ctrl_c"]) == optimize.INTERRUPTED == 130
     err = capsys.readouterr().err.strip()
-    assert err == ("interrupted: the simulations finished so far are in outputs/studies/ctrl_c/; the same command "
-                   "resumes from them")
+    assert err == ("interrupted: the simulations of the finished rounds are kept in the study folder (training.nc); "
+                   "the same command resumes from them")

@@ -162,8 +162,8 @@ def test_the_backoff_aims_each_run_inside_and_the_restarts_return_to_the_boundar
 def test_a_constraint_inside_the_backoff_band_of_the_run_that_found_the_point_is_active():
     """The circle problem with the back-off: one run alone ends pressed against its tightened circle,
     inside the true one (margin between -0.02 and 0): the circle is what stopped it, so it is
-    reported active, the slack (margin -1) is not; with no back-off the same band is the
-    tolerance alone. Before, a first run that ended on its evaluation limit at the pinion's margins
+    reported active, the slack (margin -1) is not; a start that no run improves on carries no band.
+    Before, a first run that ended on its evaluation limit at the pinion's margins
     of -2.3e-3 (back-off 2e-3, tolerance 1e-3) reported no active constraint (session 31 check)."""
     def circle(u):
         return -(u[0] + u[1]), np.array([0.0, (u[0] ** 2 + u[1] ** 2) / 0.5 - 1.0, -1.0])
@@ -173,7 +173,12 @@ def test_a_constraint_inside_the_backoff_band_of_the_run_that_found_the_point_is
                        **kw)
     assert -0.02 - 1e-4 <= one.margins[1] < -1e-3           # inside the circle, within the back-off band
     assert one.active_constraints == ["simulation", "circle"]
-    # the simulation margin (0 wherever there is a result) has no back-off and is active by its tolerance
-    plain = local_refine(lambda u: (-(u[0] + u[1]), np.array([(u[0] ** 2 + u[1] ** 2) / 0.5 - 1.0])), [0.1, 0.2],
-                         ["circle"], max_evaluations=12, initial_step=0.1, final_step=1e-6, active_tolerance=1e-4)
-    assert (plain.active_constraints == ["circle"]) == (abs(plain.margins[0]) <= 1e-4)
+    # a start that no run improves on was found before any run: no back-off band. The unconstrained
+    # minimum (0.3, 0.3) lies inside the circle at margin -0.64, and inside the constraint c = u0 - 0.31
+    # at -0.01, within that one's back-off 0.02 but not what holds the point: nothing is active
+    def bowl(u):
+        return float(np.sum((u - 0.3) ** 2)), np.array([(u[0] ** 2 + u[1] ** 2) / 0.5 - 1.0, u[0] - 0.31])
+
+    still = local_refine(bowl, [0.3, 0.3], ["circle", "c"], restarts=0, backoff=[0.02, 0.02], **kw)
+    np.testing.assert_allclose(still.u, [0.3, 0.3])
+    assert still.margins[1] == pytest.approx(-0.01) and still.active_constraints == []

@@ -49,6 +49,7 @@ def test_simulation_config_carries_the_study_load_case(pinion):
     ("bearing", "tsrb_missing", ["study.bearing", "tsrb_missing", "tsrb_pinion"]),
     ("refine.max_simulations", -1, ["study.refine.max_simulations", "-1", "0 (no local stage)", ">= 7"]),
     ("refine.max_simulations", 6, ["study.refine.max_simulations", "6", ">= 7", "first simplex of 6 points"]),
+    ("refine.max_simulations", False, ["study.refine.max_simulations", "False", ">= 7"]),
     ("refine.initial_step", 0.0, ["study.refine.initial_step", "0.0", "(0, 1]"]),
     ("refine.final_step", 0.5, ["study.refine.final_step", "0.5", "<= refine.initial_step"]),
     ("refine.restarts", -1, ["study.refine.restarts", "-1", ">= 0"]),

@@ -262,7 +262,7 @@ def test_a_dynamic_kind_warms_up_with_a_short_uncached_run(tmp_path, monkeypatch
     the job's own settings, and nothing cached: a job whose case reaches no steady state is not cached, so
     a warm-up with its own settings was computed twice (24 s of warm-up, then 26 s in its job, for a
     case capped at 2 windows; an independent check of session 31). The short run warms its kind once
-    it integrated, converged or not; a quasi-static kind still warms up on its own cases."""
+    it integrated, converged or not."""
     seen = []
 
     def fake(cfg, op, path):
