@@ -415,12 +415,17 @@ def undeclared_key(dotted):
             return ""
         found = {f.name: f for f in fields(schema)}
         if part not in found:
-            close = difflib.get_close_matches(part, list(found), n=1)
-            return f"{prefix}.{part} is not a config key" + (f" (did you mean {prefix}.{close[0]}?)" if close else "")
+            return _not_a_key(prefix, part, list(found))
         f = found[part]
         schema = f.metadata.get("schema") or (f.type if is_dataclass(f.type) else None)
         prefix = f"{prefix}.{part}"
     return ""
+
+
+def _not_a_key(path, name, names):
+    """``path.name is not a config key``, with the closest of the declared ``names`` as a hint."""
+    close = difflib.get_close_matches(str(name), names, n=1)
+    return f"{path}.{name} is not a config key" + (f" (did you mean {path}.{close[0]}?)" if close else "")
 
 
 def field_check(schema, name):
@@ -484,9 +489,7 @@ def node_problems(schema, node, path, *, bearing_type=None, keys=None, strict=Fa
     problems = []
     if strict:
         for extra in (k for k in node if k not in names):  # added with "+group.key=..."
-            close = difflib.get_close_matches(str(extra), names, n=1)
-            hint = f" (did you mean {path}.{close[0]}?)" if close else ""
-            problems.append(f"{path}.{extra} is not a config key{hint}")
+            problems.append(_not_a_key(path, extra, names))
     wanted = None if keys is None else set(keys)
     for f in fields(schema):
         if wanted is not None and f.name not in wanted:

@@ -110,12 +110,19 @@ def compose(overrides=None):
     return cfg
 
 
+def simulation_arguments(study, bearing, overrides=None, settings=()):
+    """The command-line arguments of the study's simulations of ``bearing`` (a conf/bearing name): the
+    bearing, the study's lubricant, ``settings`` (e.g. a design's values and a load case) and the
+    overrides passed on to simulations (``solver.dynamic.*`` only with ``solver=dynamic``)."""
+    return [f"bearing={bearing}", f"lubricant={study.lubricant}", *settings,
+            *for_solver(simulation_overrides(overrides))]
+
+
 def simulation_config(study, bearing, overrides=None, case=None):
     """Composed simulation config of ``bearing`` (a conf/bearing name) at the load case ``case``
-    (a dict of LOAD_KEYS, a case of studies.cycle.DutyCycle; default: ``study.load``).
-    ``solver.dynamic.*`` overrides are passed on only with ``solver=dynamic``."""
-    passed = for_solver(simulation_overrides(overrides))
-    cfg = _composed([f"bearing={bearing}", f"lubricant={study.lubricant}", *passed])
+    (a dict of LOAD_KEYS, a case of studies.cycle.DutyCycle; default: ``study.load``), from
+    :func:`simulation_arguments`."""
+    cfg = _composed(simulation_arguments(study, bearing, overrides))
     for key in LOAD_KEYS:
         cfg.load[key] = float((study.load if case is None else case)[key])
     return cfg
@@ -230,9 +237,9 @@ def validate(study):
     _require(isinstance(free, list) and len(free) > 0 and len(set(free)) == len(free)
              and set(free) <= set(DESIGN_PARAMETERS), "free", free,
              f"a non-empty list of distinct names from {list(DESIGN_PARAMETERS)}")
-    unknown = sorted(set(s.get("bounds", {})) - set(DESIGN_PARAMETERS))
-    _require(not unknown, f"bounds.{unknown[0] if unknown else ''}", s.get("bounds", {}).get(unknown[0]) if unknown else None,
-             f"bounds of the design parameters {list(DESIGN_PARAMETERS)} only (a typo would bound nothing)")
+    for name, b in s.get("bounds", {}).items():
+        _require(name in DESIGN_PARAMETERS, f"bounds.{name}", b,
+                 f"bounds of the design parameters {list(DESIGN_PARAMETERS)} only (a typo would bound nothing)")
     for name in free:
         b = s.get("bounds", {}).get(name)
         _require(isinstance(b, list) and len(b) == 2 and all(map(_is_number, b)) and b[0] < b[1],

@@ -155,8 +155,9 @@ def local_refine(evaluate, u0, names, max_evaluations, initial_step, final_step,
     aimed = {u.tobytes(): 0.0 for u in starts}
 
     def constraints(u, tightening):
-        aimed.setdefault(np.clip(np.asarray(u, dtype=float), 0.0, 1.0).tobytes(), tightening)
-        return -(np.asarray(at(u)[2], dtype=float) + tightening * shift)     # scipy: >= 0 feasible
+        point, _, m = at(u)
+        aimed.setdefault(point.tobytes(), tightening)
+        return -(np.asarray(m, dtype=float) + tightening * shift)     # scipy: >= 0 feasible
 
     def best():
         return min(seen.values(), key=lambda e: rank_key(e[1], e[2]))

@@ -23,7 +23,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 from sim.io import write_bytes_atomic, write_figure_atomic, write_netcdf_atomic  # noqa: E402
-from studies.config import for_solver, simulation_overrides  # noqa: E402
+from studies.config import simulation_arguments  # noqa: E402
 from studies.constraints import margins, violation  # noqa: E402
 from studies.cycle import LOAD_KEYS, DutyCycle  # noqa: E402
 from studies.evaluate import STATUS, case_values, design_config, design_matrix, simulate_point, table_to_file  # noqa: E402
@@ -280,11 +280,10 @@ def resimulate_commands(search, bearing):
     """The command lines that simulate design ``bearing`` (name -> value) as the search did, one per
     load case of its duty cycle (one for a single case), every value to full precision (repr) and each
     token shell-quoted."""
-    s = search.study
     values = [f"bearing.{k}={float(v)!r}" for k, v in bearing.items() if v is not None]
-    extra = for_solver(simulation_overrides(search.overrides))
-    return [shlex.join(["python", "-m", "sim.run", f"bearing={s.bearing}", f"lubricant={s.lubricant}", *values,
-                        *(f"load.{k}={float(case[k])!r}" for k in LOAD_KEYS), *extra])
+    return [shlex.join(["python", "-m", "sim.run", *simulation_arguments(
+                search.study, search.study.bearing, search.overrides,
+                [*values, *(f"load.{k}={float(case[k])!r}" for k in LOAD_KEYS)])])
             for case in search.cycle.cases]
 
 

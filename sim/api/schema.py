@@ -62,19 +62,17 @@ def validate(cfg):
         problems.append("friction.kinematics = rolling imposes every roller's and the cage's speed ((2.20), (2.22)): "
                         "a rigid cage; set friction.cage_guidance = rigid with it (friction.cage_guidance = free, the "
                         "default, needs friction.kinematics = traction)")
-    tilt = OmegaConf.select(cfg, "load.tilt")
-    tilt = OmegaConf.to_container(tilt) if OmegaConf.is_list(tilt) else tilt
-    if OmegaConf.select(cfg, "solver.name") == "dynamic" and any(
-            isinstance(t, (int, float)) and t != 0 for t in (tilt if isinstance(tilt, list) else [tilt])):
-        # the time-domain inner ring translates but does not tilt (sim.solvers.dynamic): a tilt would be
-        # ignored and the result labelled with it
-        problems.append(f"load.tilt = {tilt} is outside the allowed range for solver=dynamic: 0 (the "
-                        "time-domain model has no imposed inner-ring tilt, sim.solvers.dynamic); run a tilted case "
-                        "with solver=quasi_static")
     if not any(p.startswith("load.") for p in problems):
         try:
-            operating_points(cfg.load)  # zipped lengths, repeated cases
+            ops = operating_points(cfg.load)  # zipped lengths, repeated cases
         except InputError as exc:
             problems.append(str(exc))
+        else:
+            if OmegaConf.select(cfg, "solver.name") == "dynamic" and any(op.tilt_deg != 0.0 for op in ops):
+                # the time-domain inner ring translates but does not tilt (sim.solvers.dynamic): a tilt
+                # would be ignored and the result labelled with it
+                problems.append(f"load.tilt = {OmegaConf.select(cfg, 'load.tilt')} is outside the allowed range for "
+                                "solver=dynamic: 0 (the time-domain model has no imposed inner-ring tilt, "
+                                "sim.solvers.dynamic); run a tilted case with solver=quasi_static")
     if problems:
         raise ConfigError("\n".join(problems))

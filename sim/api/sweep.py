@@ -810,7 +810,7 @@ def unsolved_summary(path):
     with xr.open_dataset(path) as ds:
         if ds.sizes.get("failure", 0) == 0:
             return ""
-        reasons = {str(r): int((ds.failed_reason.values == r).sum()) for r in np.unique(ds.failed_reason.values)}
+        reasons = failure_reasons(ds)
         total = ds.sizes["design"] * ds.sizes["case"]
     return (f"{path}: {sum(reasons.values())} of {total} cases without a result ("
             + ", ".join(f"{n} {r}" for r, n in reasons.items()) + "; listed in its failed_* variables); exit "
@@ -1068,10 +1068,15 @@ def incomplete_summary(path, incomplete, shown=5):
             f"complete it: {rows}{more}")
 
 
+def failure_reasons(ds):
+    """{reason: number of rows} of a sweep Dataset's failure table."""
+    return {str(r): int((ds.failed_reason.values == r).sum()) for r in np.unique(ds.failed_reason.values)}
+
+
 def _report(ds, path, shown=10):
     """Log the size of the sweep and the first ``shown`` rows of its failure table."""
     conv = ds.converged.values.astype(bool)
-    reasons = {r: int((ds.failed_reason.values == r).sum()) for r in np.unique(ds.failed_reason.values)}
+    reasons = failure_reasons(ds)
     log.info("sweep.nc: %d designs x %d cases, %d converged, failed: %s -> %s", ds.sizes["design"],
              ds.sizes["case"], int(conv.sum()), reasons or "none", path)
     for r in range(min(shown, ds.sizes["failure"])):
