@@ -298,6 +298,7 @@ class FrictionConfig:
     enabled: bool = key(Flag())
     solid_friction_coefficient: Any = key(Number(0.0, 1.0))
     solid_slip_velocity: Any = key(Number(0.0, 1.0, low_open=True, units="m/s"))
+    solid_slip_ratio: Any = key(Number(0.0, 1.0, low_open=True))
     hysteresis_loss_factor: Any = key(Number(0.0, 0.5))
     cage_friction_coefficient: Any = key(Number(0.0, 1.0))
     film_thickness: str = key(Choice(("dowson_higginson", "pan_hamrock")))
@@ -415,14 +416,14 @@ def undeclared_key(dotted):
             return ""
         found = {f.name: f for f in fields(schema)}
         if part not in found:
-            return _not_a_key(prefix, part, list(found))
+            return not_a_key(prefix, part, list(found))
         f = found[part]
         schema = f.metadata.get("schema") or (f.type if is_dataclass(f.type) else None)
         prefix = f"{prefix}.{part}"
     return ""
 
 
-def _not_a_key(path, name, names):
+def not_a_key(path, name, names):
     """``path.name is not a config key``, with the closest of the declared ``names`` as a hint."""
     close = difflib.get_close_matches(str(name), names, n=1)
     return f"{path}.{name} is not a config key" + (f" (did you mean {path}.{close[0]}?)" if close else "")
@@ -489,7 +490,7 @@ def node_problems(schema, node, path, *, bearing_type=None, keys=None, strict=Fa
     problems = []
     if strict:
         for extra in (k for k in node if k not in names):  # added with "+group.key=..."
-            problems.append(_not_a_key(path, extra, names))
+            problems.append(not_a_key(path, extra, names))
     wanted = None if keys is None else set(keys)
     for f in fields(schema):
         if wanted is not None and f.name not in wanted:

@@ -370,17 +370,28 @@ class Geometry:
         return self.alpha + self.gamma
 
     @property
-    def outer_normal_angle_min(self):
-        """Smallest angle to the bearing axis of the outer raceway's normal over the roller's length
-        [rad]: the TRB's straight cup, alpha + gamma; the TSRB's arc at the roller's large end, at most
-        alpha + arctan(rho'(Lwe/2)) (the raceway arc, of radius PCR (2 - kappa) >= PCR, shares the
-        roller's normal at the contact points and turns more slowly along the roller, so that bound
-        is below the raceway's). Each roller presses the inner ring along the outer contact normals
-        (the roller's force balance, less friction and centrifugal force, which only lowers the
-        radial part), so no single-row equilibrium has Fa / Fr below tan of it
-        (:meth:`sim.api.bearing_model.BearingModel.check_limits`)."""
+    def single_row_thrust_angle(self):
+        """Angle to the radial plane [rad] of the force with which each roller presses the inner ring
+        at its nominal pose, less body loads and friction: a single row carries Fa / Fr > tan of it
+        only (:meth:`sim.api.bearing_model.BearingModel.check_limits`; Sjovall's load zone epsilon
+        -> 0 at the bound, Harris & Kotzalas 2007, Rolling Bearing Analysis, 7.4).
+
+        TRB: the cup angle alpha + gamma. The roller's outer contact force is normal to the straight
+        cup; the inner raceway and the rib, both on the inner ring, balance it.
+        TSRB: the roller-axis angle alpha. Every normal of the roller's crown circle passes through
+        that circle's centre, and the circles of the outer and the inner side of the roller's
+        meridian section are mirror images about its axis (MODEL.md 2). So the outer raceway forces
+        act through one centre, the inner ones through the other, and the roller balances them only
+        along the line through both centres, normal to its axis: a roller tilted by theta in its
+        meridian plane presses the inner ring at alpha + theta (tests/balance/test_thrust_angle.py,
+        within 0.002 deg). The flattest normal of the outer raceway, at the roller's large end
+        (alpha - 2.6 deg for tsrb_reference, the bound before session 32), is reached only with
+        the rollers tilted by degrees in their osculating raceways: below tan(alpha) the load zone
+        closes to a few such rollers and the inner ring moves by millimetres (tsrb_reference at Fr
+        8 kN, Fa / Fr = 0.84 tan(alpha): 7.2 mm axially, rollers tilted 2.2-7.3 deg, contacts 8.6 mm
+        beyond the roller's unloaded span on the raceway), outside the rings' width B."""
         if self.type == "TSRB":
-            return self.alpha + float(np.arctan(self.roller_profile_slope(0.5 * self.Lwe)))
+            return self.alpha
         return self.cup_angle
 
     @property

@@ -16,37 +16,43 @@ def ring_in_meridian(raw, psi):
     return np.array([da, dr * np.cos(psi) + dy * np.sin(psi)])
 
 
-def race_forces(model, raw, race=1, tilt_deg=0.0, lateral=False):
-    """Resultant (x, z) [N] of the slice loads of one race (0 outer, 1 inner) on its ring, all
-    rollers, recomputed from the solved state; (x, y, z) with ``lateral``.
-
-    Independent of the solver's residual bookkeeping: normals from the contact kernel at the
-    returned poses (imposed tilt of the inner ring included), loads from the returned line
-    loads; the force of roller j on the ring is +q w n (n into the ring), summed as 3-D vectors
-    over the azimuths (x = radial component times cos(psi), y = times sin(psi)).
-    """
+def roller_race_force(model, raw, j, race=1, tilt_deg=0.0):
+    """Force (radial, axial) [N] of roller j's slice loads of one race (0 outer, 1 inner) on its
+    ring, in the roller's meridian plane, recomputed from the solved state: normals from the
+    contact kernel at the returned pose (imposed tilt of the inner ring included), loads from the
+    returned line loads; each slice presses the ring with +q w n (n into the ring)."""
     from sim.physics.contact import Raceway, RingMotion, SliceContacts, slice_contact_meridian
 
     g = model.geometry
     a = g.arrays
     n = g.n_slices
     d, nrm, pts = np.empty(n), np.empty((n, 2)), np.empty((n, 2))
+    psi = 2 * np.pi * j / g.Z
+    if race == 0:
+        slice_contact_meridian(a["x"], a["rho"], 1, raw["poses"][j], g.alpha, g.Dpw,
+                               Raceway(a["race_kind"][0], a["race_par"][0]), RingMotion(0.0, 0.0, 0.0),
+                               SliceContacts(d, nrm, pts))
+    else:
+        slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw,
+                               Raceway(a["race_kind"][1], a["race_par"][1]),
+                               RingMotion(ring_in_meridian(raw, psi)[1], raw["ring"][0],
+                                          np.radians(tilt_deg) * np.cos(psi)), SliceContacts(d, nrm, pts))
+    load = raw["line_load"][j, race] * a["w"]
+    return np.array([np.sum(load * nrm[:, 0]), np.sum(load * nrm[:, 1])])
+
+
+def race_forces(model, raw, race=1, tilt_deg=0.0, lateral=False):
+    """Resultant (x, z) [N] of the slice loads of one race (0 outer, 1 inner) on its ring, all
+    rollers, recomputed from the solved state (:func:`roller_race_force`, independent of the
+    solver's residual bookkeeping); (x, y, z) with ``lateral``: each roller's radial component
+    summed as a 3-D vector over the azimuths (x = times cos(psi), y = times sin(psi))."""
     Fx = Fy = Fz = 0.0
-    for j in range(g.Z):
-        psi = 2 * np.pi * j / g.Z
-        if race == 0:
-            slice_contact_meridian(a["x"], a["rho"], 1, raw["poses"][j], g.alpha, g.Dpw,
-                                   Raceway(a["race_kind"][0], a["race_par"][0]), RingMotion(0.0, 0.0, 0.0),
-                                   SliceContacts(d, nrm, pts))
-        else:
-            slice_contact_meridian(a["x"], a["rho"], -1, raw["poses"][j], g.alpha, g.Dpw,
-                                   Raceway(a["race_kind"][1], a["race_par"][1]),
-                                   RingMotion(ring_in_meridian(raw, psi)[1], raw["ring"][0],
-                                              np.radians(tilt_deg) * np.cos(psi)), SliceContacts(d, nrm, pts))
-        load = raw["line_load"][j, race] * a["w"]
-        Fx += np.sum(load * nrm[:, 0]) * np.cos(psi)
-        Fy += np.sum(load * nrm[:, 0]) * np.sin(psi)
-        Fz += np.sum(load * nrm[:, 1])
+    for j in range(model.geometry.Z):
+        psi = 2 * np.pi * j / model.geometry.Z
+        radial, axial = roller_race_force(model, raw, j, race, tilt_deg)
+        Fx += radial * np.cos(psi)
+        Fy += radial * np.sin(psi)
+        Fz += axial
     return (Fx, Fy, Fz) if lateral else (Fx, Fz)
 
 

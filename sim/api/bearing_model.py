@@ -190,9 +190,9 @@ class BearingModel:
         """Why a :meth:`solve` result ``raw`` that did not converge has no load distribution, from its
         last iterate: the rollers it loads, the largest load and contact pressure, the ring's
         displacement, the residual, and with a radial load Fa / Fr beside the single-row bound
-        tan(a_min) of :meth:`check_limits` (near it the load zone closes to one roller and the ring's
-        place is barely determined: the ring then moves by millimetres, README "Heavy and near-bound
-        random cases")."""
+        tan(beta) of :meth:`check_limits` (near it the load zone closes to one roller and the ring's
+        place is barely determined: the ring then moves by tenths of a millimetre, README "Heavy and
+        near-bound random cases")."""
         Q = raw["Q"].sum(axis=1) + raw["Q_rib"]
         ring = raw["ring"]
         text = (f"no load equilibrium found after {raw['iterations']} ring iterations; its last "
@@ -200,8 +200,8 @@ class BearingModel:
                 f"N, pmax {float(raw['pressure'].max()):.0f} MPa), moves the inner ring {ring[0]:.4g} mm axially and "
                 f"{ring[1]:.4g} mm radially and leaves a residual of {float(np.abs(raw['residual']).max()):.4g} N")
         if op.Fr > 0.0:
-            text += (f"; Fa / Fr = {op.Fa / op.Fr:.4g} against the single-row bound tan(a_min) = "
-                     f"{float(np.tan(self.geometry.outer_normal_angle_min)):.4g}")
+            text += (f"; Fa / Fr = {op.Fa / op.Fr:.4g} against the single-row bound tan(beta) = "
+                     f"{float(np.tan(self.geometry.single_row_thrust_angle)):.4g}")
         return text
 
     def check_limits(self, op: OperatingPoint):
@@ -214,12 +214,13 @@ class BearingModel:
           ratings_alpha (the reported P0, C0) and at the cup angle alpha + gamma, which carries
           the axial load (for a TRB both are the same angle): a configured TSRB ratings_alpha does
           not hide a roller-axis angle too flat to carry Fa elastically;
-        - Fa > Fr tan(a_min) with Fr > 0, a_min the outer raceway normal's smallest angle to the axis
-          (:attr:`sim.geometry.Geometry.outer_normal_angle_min`): each roller presses the inner
-          ring along the outer contact normals, so a single row carries Fa / Fr >= tan(a_min) only,
-          reached with one loaded roller (Sjovall's load zone epsilon -> 0; Harris & Kotzalas 2007,
-          Rolling Bearing Analysis, 7.4); below it the inner ring has no equilibrium with its axial
-          position free (an opposed bearing would take the rest, which the model lacks).
+        - Fa > Fr tan(beta) with Fr > 0, beta the angle at which each roller presses the inner ring
+          (:attr:`sim.geometry.Geometry.single_row_thrust_angle`: the TRB's cup angle, the TSRB's
+          roller-axis angle), so a single row carries Fa / Fr > tan(beta) only, the bound reached
+          with one loaded roller (Sjovall's load zone epsilon -> 0; Harris & Kotzalas 2007, Rolling
+          Bearing Analysis, 7.4); below it the inner ring has no equilibrium with its axial position
+          free (an opposed bearing would take the rest, which the model lacks), or, for the TSRB, one
+          only with its rollers tilted by degrees and the ring millimetres off its place.
         """
         g = self.geometry
         s = self.settings
@@ -252,16 +253,22 @@ class BearingModel:
                          f"{op.Fr:g} N: <= {(k * C0 - f['X0'] * op.Fr) / f['Y0']:.6g} N ({why})")
 
     def _check_axial_share(self, op: OperatingPoint):
-        """The single-row equilibrium bound Fa > Fr tan(a_min) of :meth:`check_limits`."""
-        angle = self.geometry.outer_normal_angle_min
+        """The single-row equilibrium bound Fa > Fr tan(beta) of :meth:`check_limits`."""
+        g = self.geometry
+        angle = g.single_row_thrust_angle
         bound = op.Fr * float(np.tan(angle))
         if op.Fr > 0.0 and not op.Fa > bound:
+            why = ("each roller presses the inner ring at the cup angle (its rib and inner raceway balance the cup's "
+                   "normal force)" if g.type == "TRB" else
+                   "each roller presses the inner ring normal to its own axis (its raceway forces act through the "
+                   "centres of its two crown circles, which lie on a normal to the axis); below it the rollers carry "
+                   "the load only tilted by degrees in their osculating raceways, with the ring millimetres off its "
+                   "place and the contacts beyond the rings' width")
             raise InputError(
                 f"load.Fa = {op.Fa:g} N is outside the allowed range for this bearing at load.Fr = {op.Fr:g} N: "
-                f"> Fr tan({float(np.degrees(angle)):.4g} deg) = {bound:.6g} N, the outer raceway normal's smallest "
-                "angle to the axis: each roller presses the inner ring along its outer contact normals, so a single "
-                "row carries Fa / Fr >= tan of that angle only, with one roller loaded; below it the inner ring has "
-                "no equilibrium with its axial position free (an opposed bearing would take the rest)")
+                f"> Fr tan({float(np.degrees(angle)):.4g} deg) = {bound:.6g} N, the single row's axial share: "
+                f"{why}; below it the inner ring has no equilibrium with its axial position free (an opposed "
+                "bearing would take the rest)")
 
     def body_loads(self, op: OperatingPoint):
         """Body loads on a loaded roller, rolling kinematics (2.20), (2.22): BodyLoads(centrifugal

@@ -99,6 +99,7 @@ class FrictionModel:
         model = str(drag["model"])
         mu_s = float(friction["solid_friction_coefficient"])
         v_s = MM_PER_M * float(friction["solid_slip_velocity"])
+        self.solid_slip_ratio = float(friction["solid_slip_ratio"])
         hysteresis = float(friction["hysteresis_loss_factor"])
         mu_cage = float(friction["cage_friction_coefficient"])
         sigma = MM_PER_UM * float(surface["sigma"])
@@ -179,6 +180,9 @@ class FrictionModel:
         if static:   # no film, Coulomb friction wherever a contact slips; no drag (it goes as the speed squared)
             par = par._replace(solid=par.solid._replace(v_s=BREAKAWAY_SLIP_RESOLUTION * wi * 0.5 * g.Dpw), drag_k=0.0,
                                boundary_only=True)
+        else:        # creeping speeds: full slip at a creepage (conf/friction/default.yaml, solid_slip_ratio),
+            # so that the torque tends to the breakaway torque as the speed falls to 0
+            par = par._replace(solid=par.solid._replace(v_s=min(par.solid.v_s, self.solid_slip_ratio * wi * 0.5 * g.Dpw)))
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), rib_end=self.rib_end,

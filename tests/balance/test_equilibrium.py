@@ -238,11 +238,14 @@ def test_skewed_cases_whose_friction_loads_swing_settle_with_anderson_depth_two(
     unsettled, depth 2 (conf/friction/default.yaml) settles them; the torque then equals power
     loss / speed within 1 % (the skew tests' bound). Found, and run here, with the rigid cage
     (friction.cage_guidance = rigid, the default until session 20), whose pocket friction swings
-    with the loads."""
+    with the loads, and with the boundary friction's regularising slip at 1 mm/s at every speed
+    (friction.solid_slip_ratio = 1: the creepage bound of session 32 lowers it to 0.28 mm/s at the
+    prototype's 87.6 rpm, which moves its torque by 3e-4 and its coupling then settles in 9-30
+    passes; this test is about the mixing, on the case as it was found)."""
     import sim
 
     base = [f"bearing={bearing}", *load, "friction.skew.enabled=true", "friction.load_coupling_passes=8",
-            "friction.cage_guidance=rigid"]
+            "friction.cage_guidance=rigid", "friction.solid_slip_ratio=1"]
     assert not bool(sim.simulate(sim.load_config(base + ["friction.load_coupling_depth=1"])).converged.squeeze())
     case = sim.simulate(sim.load_config(base + ["friction.load_coupling_depth=2"])).isel(design=0, case=0)
     assert bool(case.converged)
