@@ -10,11 +10,12 @@ import math
 from pathlib import Path
 
 from hydra.errors import HydraException
-from omegaconf import OmegaConf
+from omegaconf import DictConfig, OmegaConf
 from omegaconf.errors import OmegaConfBaseException
 
 import sim
 from sim.api import GeometryError, InputError
+from sim.config_schema import not_a_key
 from studies.cycle import LOAD_KEYS, DutyCycle
 from studies.space import DESIGN_PARAMETERS
 
@@ -104,10 +105,41 @@ def compose(overrides=None):
     the simulations of the study's bearings at its load case included (:func:`check_simulations`),
     before anything is written."""
     simulation_overrides(overrides)
+    _check_study_keys(overrides)
     cfg = _composed(for_solver(study_overrides(overrides)))
     validate(cfg.study)
     check_simulations(cfg.study, overrides)
     return cfg
+
+
+def _check_study_keys(overrides):
+    """Each ``study.*`` key set or added (``+``) on the command line must be a key of the selected
+    study config: Hydra refused an unknown one in its own words, and with ``+``, as its message
+    advised, the study ran with the key ignored (``+study.refine.maxsims=3``: session 32, an
+    independent check). ``study.bounds.<name>`` is a mapping of design parameters that
+    :func:`validate` checks; below a list (``duty_cycle[0].Fa``) DutyCycle checks the keys.
+
+    Raises
+    ------
+    StudyConfigError
+        ``study.refine.maxsims is not a config key (did you mean study.refine.max_simulations?)``.
+    """
+    keys = [o.lstrip("+").split("=", 1)[0] for o in overrides or []
+            if "=" in o and o.lstrip("+").startswith("study.")]
+    if not keys:
+        return
+    base = _composed(for_solver(study_overrides([o for o in overrides if not o.lstrip("+").startswith("study.")])))
+    for key in keys:
+        node, path = base.study, "study"
+        for part in key.split(".")[1:]:
+            name = part.split("[", 1)[0]
+            if path == "study.bounds" or not isinstance(node, DictConfig):
+                break
+            if name not in node:
+                raise StudyConfigError(not_a_key(path, name, list(node.keys())))
+            node, path = node[name], f"{path}.{name}"
+            if name != part:      # an item of a list
+                break
 
 
 def simulation_arguments(study, bearing, overrides=None, settings=()):

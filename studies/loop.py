@@ -62,6 +62,23 @@ REFINEMENT_ROUND = -1    # ``round`` of the final local stage's points
 INITIAL_CHUNK_PER_JOB = 4
 
 
+def changed_keys(stored, wanted, prefix=""):
+    """`` (changed: study.seed 7 -> 8; ...)`` between two YAML configs (``config_attrs``, both written by
+    OmegaConf), dotted keys with ``prefix``; "" when they hold the same values."""
+    def flat(node, path=""):
+        if isinstance(node, dict):
+            out = {}
+            for k, v in node.items():
+                out.update(flat(v, f"{path}{k}."))
+            return out
+        return {path[:-1]: node}
+
+    old, new = (flat(OmegaConf.to_container(OmegaConf.create(t or ""))) for t in (stored, wanted))
+    diff = [f"{prefix}{k} {old.get(k, '(none)')} -> {new.get(k, '(none)')}" for k in sorted(set(old) | set(new))
+            if old.get(k) != new.get(k)]
+    return f" (changed: {'; '.join(diff)})" if diff else ""
+
+
 @dataclass
 class Reference:
     """A reference bearing simulated at every load case of the study's duty cycle."""
@@ -214,7 +231,8 @@ class DesignSearch:
         for key in ("study_config", "simulation_config", "model_fingerprint"):
             if ds.attrs.get(key) != want.get(key):
                 what = ("version of the simulation code (sim/ sources)" if key == "model_fingerprint"
-                        else key.replace("_", " "))
+                        else key.replace("_", " ") + changed_keys(ds.attrs.get(key), want.get(key),
+                                                                  "study." if key == "study_config" else ""))
                 raise StudyConfigError(f"{path} was made with another {what}; {advice} {Path(path).parent} to start "
                                        "afresh")
         return ds

@@ -360,12 +360,14 @@ def front_summary(front, ds, refs):
     """Markdown lines: the front's extent and where the references sit against it."""
     x, y = front.pair
     on = ds.on_front.values
-    lines = [f"## {OBJECTIVES[x][1]} against {OBJECTIVES[y][1]}", "",
-             f"{int(ds.feasible.sum())} feasible of {ds.sizes['point']} simulated designs (constraints: "
-             f"{', '.join(front.margin_names)}); {int(on.sum())} on the front, each re-simulated "
-             f"(`front_{front_name(front.pair)}.nc`), figure `front_{front_name(front.pair)}.png`.", ""]
+    head = (f"{int(ds.feasible.sum())} feasible of {ds.sizes['point']} simulated designs (constraints: "
+            f"{', '.join(front.margin_names)})")
     if not on.any():
-        return lines + ["No feasible design: no front.", ""]
+        return [f"## {OBJECTIVES[x][1]} against {OBJECTIVES[y][1]}", "", f"{head}: no feasible design, so no "
+                f"front (figure `front_{front_name(front.pair)}.png` shows the designs simulated).", ""]
+    lines = [f"## {OBJECTIVES[x][1]} against {OBJECTIVES[y][1]}", "",
+             f"{head}; {int(on.sum())} on the front, each re-simulated "
+             f"(`front_{front_name(front.pair)}.nc`), figure `front_{front_name(front.pair)}.png`.", ""]
     head = [*front.search.space.names, f"{x} [{OBJECTIVES[x][2]}]", f"{y} [{OBJECTIVES[y][2]}]"]
     rows = sorted(np.flatnonzero(on), key=lambda i: float(ds[x].values[i]))
     lines += ["| " + " | ".join(head) + " |", "|" + " --- |" * len(head)]
@@ -407,9 +409,12 @@ def main(argv=None):
     if int(search.study.refine.max_simulations) > 0:     # 0: no local stage (stage B), as for a search
         for k, front in enumerate(fronts):
             front.epsilon_constraint(int(search.study.pareto.levels), [f.name for f in fronts[:k]], log)
+    empty = []      # fronts without a feasible design
     for front in fronts:
         ds = front.table()
         name = front_name(front.pair)
+        if not ds.on_front.values.any():
+            empty.append(name)
         write_netcdf_atomic(points_to_file(front, ds), out / f"points_{name}.nc")
         verified = verify_front(front, ds)
         if verified is not None:
@@ -419,6 +424,10 @@ def main(argv=None):
         lines += front_summary(front, ds, refs)
     write_bytes_atomic(out / "pareto.md", ("\n".join(lines) + "\n").encode())
     log(f"written to {out}/")
+    if empty:   # as studies.optimize without a feasible design: exit 1 (session 32, an independent check)
+        print(f"no feasible design, so no front: {', '.join(empty)} (pareto.md lists the designs simulated)",
+              file=sys.stderr)
+        return 1
     return 0
 
 

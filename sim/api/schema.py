@@ -33,6 +33,30 @@ from sim.errors import ConfigError, InputError
 for _group, _node in SCHEMAS.items():
     ConfigStore.instance().store(group="schema", name=_group, node=_node)
 
+# A run folder's name (conf/config.yaml, hydra.run.dir) holds the command's overrides: at most this many bytes
+# of them. Linux allows 255 bytes per name; a report's re-simulation command with full-precision values ran to 271
+# and failed to make its folder (session 32, an independent check).
+RUN_FOLDER_OVERRIDES_BYTES = 120
+RUN_FOLDER_HASH_CHARS = 12
+
+
+def run_folder_name(overrides):
+    """The overrides part of a run folder's name (``${run_folder_name:${hydra.job.override_dirname}}``):
+    the overrides themselves when they fit in RUN_FOLDER_OVERRIDES_BYTES, else their start and a hash of all
+    of them (sha1, RUN_FOLDER_HASH_CHARS hex digits), so that two long commands keep apart."""
+    import hashlib
+
+    text = str(overrides)
+    raw = text.encode()
+    if len(raw) <= RUN_FOLDER_OVERRIDES_BYTES:
+        return text
+    digest = hashlib.sha1(raw).hexdigest()[:RUN_FOLDER_HASH_CHARS]
+    head = raw[:RUN_FOLDER_OVERRIDES_BYTES - RUN_FOLDER_HASH_CHARS - 1].decode(errors="ignore")
+    return f"{head}_{digest}"
+
+
+OmegaConf.register_new_resolver("run_folder_name", run_folder_name, replace=True)
+
 
 # ---------------------------------------------------------------------------- validation
 def validate(cfg):

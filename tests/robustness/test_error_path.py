@@ -106,7 +106,11 @@ def test_collect_refuses_a_folder_that_is_not_a_sweep(tmp_path):
     (["bearing.PCR=90"], ["bearing.PCR = '90' cannot be overridden here"]),
     (["solver.n_slices=1"], ["solver.n_slices = 1 is outside the allowed range"]),
     (["study.bearing=nothing"], ["study.bearing = 'nothing'"]),
-], ids=["Fa_negative", "sampler", "unknown_key", "bearing_override", "solver_range", "unknown_bearing"])
+    # Hydra's own message had no hint, and with "+" (its advice) the study ran without the key (session 32)
+    (["study.refine.maxsims=3"], ["study.refine.maxsims is not a config key (did you mean study.refine.max_simulations?)"]),
+    (["+study.refine.maxsims=3"], ["study.refine.maxsims is not a config key (did you mean study.refine.max_simulations?)"]),
+], ids=["Fa_negative", "sampler", "unknown_key", "bearing_override", "solver_range", "unknown_bearing",
+         "unknown_nested_key", "added_unknown_nested_key"])
 def test_optimize_refuses_in_one_line_and_makes_no_folder(tmp_path, overrides, fragments):
     out = run(["-m", "studies.optimize", *overrides], tmp_path)
     assert_refused(out, *fragments)
@@ -193,3 +197,22 @@ def test_every_entry_point_is_covered():
     assert mains == {"sim/run.py", "sim/api/sweep.py", "studies/optimize.py", "studies/pareto.py",
                      "studies/reference_optimum.py", "studies/sensitivity.py", "studies/validation.py",
                      "studies/workers.py"}
+
+
+def test_a_run_with_long_full_precision_overrides_makes_its_folder(tmp_path):
+    """A design report's re-simulation command (full-precision values, 11 overrides) named its run
+    folder after all of them, 271 bytes against Linux's 255, and failed with a traceback (session 32,
+    an independent check). The folder's name now keeps the overrides' first bytes and a hash of
+    all of them (sim.api.schema.run_folder_name): the run succeeds, every name stays within 255
+    bytes, and two commands that differ only in the last digits of a late value get two folders."""
+    base = ["bearing=tsrb_reference", "lubricant=fva3", "bearing.PCR=41.99541028259611", "bearing.kappa=0.9713367221216711",
+            "bearing.aP=4.0", "bearing.aPk=8.5", "bearing.alpha=18.0", "bearing.ratings_alpha=18.0", "load.Fa=6500.0",
+            "load.Fr=0.0", "load.speed=1500.0", "load.tilt=0.0"]
+    for temperature in ("55.000000000001", "55.000000000002"):
+        out = run(["-m", "sim.run", *base, f"load.oil_temperature={temperature}", *FAST, "output.cache_dir=null"],
+                  tmp_path)
+        assert out.returncode == 0, out.stderr[-3000:]
+    folders = [p for p in (tmp_path / "outputs" / "runs").glob("*/*") if p.is_dir()]
+    assert len(folders) == 2 and all((f / "result.nc").is_file() for f in folders)
+    assert all(len(f.name.encode()) <= 255 for f in folders)
+    assert len({f.name.split("_", 1)[1] for f in folders}) == 2

@@ -120,9 +120,11 @@ def test_interrupted_search_resumes_to_the_uninterrupted_result(finished, tmp_pa
 
 
 def test_changed_settings_are_refused_on_resume(finished):
+    """The refusal names what changed (it did not: session 32, an independent check)."""
     search, _, _ = finished
-    with pytest.raises(ValueError, match="another study config"):
+    with pytest.raises(ValueError, match="another study config") as err:
         search_in(search.out, "study.bounds.PCR=[40.0,150.0]").run()
+    assert "(changed: study.bounds.PCR " in str(err.value) and "-> [40.0, 150.0]" in str(err.value)
 
 
 def test_points_of_another_simulation_code_are_refused_on_resume(finished, tmp_path):

@@ -100,3 +100,21 @@ def test_fronts_are_feasible_non_dominated_verified_and_resume_without_simulatin
         again = xr.load_dataset(out / f"points_{name}.nc")
         assert again.attrs.pop("created") >= ds.attrs.pop("created")
         xr.testing.assert_identical(again, ds)
+
+
+def test_a_study_without_a_feasible_design_has_no_front_and_exits_1(tmp_path, monkeypatch, capsys):
+    """The pinion study at 40 kN with 4 trials per front and no local stage: no simulated design
+    meets the constraints (the feasible region is a thin sliver even at 35 kN, 0.03 % of a Sobol
+    sample). The command exited 0 and each section said "0 on the front, each re-simulated"
+    (session 32, an independent check); as studies.optimize without a feasible design, it now
+    exits 1 naming the fronts, and pareto.md says there is no front."""
+    from studies.pareto import main
+
+    monkeypatch.chdir(tmp_path)
+    args = ["study.name=pareto_empty", "study.load.Fa=40000", "study.pareto.trials=4",
+            "study.sampler_settings.population_size=4", "study.refine.max_simulations=0"]
+    assert main(args) == 1
+    err = capsys.readouterr().err
+    assert "no feasible design, so no front: " in err
+    text = (tmp_path / "outputs" / "studies" / "pareto_empty" / "pareto" / "pareto.md").read_text()
+    assert "no feasible design, so no front" in text and "each re-simulated" not in text

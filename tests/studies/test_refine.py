@@ -94,10 +94,22 @@ def test_several_starts_leave_the_basin_of_the_best_start():
     one = local_refine(_two_basins, [0.25, 0.25], ["g"], **SETTINGS, restarts=2, restart_shrink=0.2)
     assert one.value == pytest.approx(0.1, abs=1e-6)
     both = local_refine(_two_basins, [[0.25, 0.25], [0.5, 0.55]], ["g"], **SETTINGS, restarts=2,
-                        restart_shrink=0.2, start_evaluations=60)
+                        restart_shrink=0.2, start_evaluations=50)
     np.testing.assert_allclose(both.u, [0.8, 0.8], atol=1e-4)
     assert both.value == pytest.approx(0.0, abs=1e-6) and both.runs >= 2
     assert both.start_value == pytest.approx(0.105) and both.evaluations <= SETTINGS["max_evaluations"]
+
+
+def _recorded(u0, **more):
+    """local_refine on the two basins from ``u0`` (one or several starts), with the points it
+    evaluated in order: (LocalResult, list of their bytes)."""
+    calls = []
+
+    def evaluate(u):
+        calls.append(u.tobytes())
+        return _two_basins(u)
+    kw = dict(initial_step=0.1, final_step=1e-9, active_tolerance=1e-4, restarts=2, restart_shrink=0.2)
+    return local_refine(evaluate, u0, ["g"], **kw, **more), calls
 
 
 def test_the_first_start_runs_as_alone_and_the_others_screen_within_the_budget():
@@ -108,27 +120,32 @@ def test_the_first_start_runs_as_alone_and_the_others_screen_within_the_budget()
     evaluates at most start_evaluations new points, and all of it stays within max_evaluations; a
     tight budget leaves starts out."""
     starts = [[0.25, 0.25], [0.5, 0.55], [0.1, 0.9], [0.9, 0.1]]
-    kw = dict(initial_step=0.1, final_step=1e-9, active_tolerance=1e-4, restarts=2, restart_shrink=0.2)
-
-    def recorded(u0, **more):
-        calls = []
-
-        def evaluate(u):
-            calls.append(u.tobytes())
-            return _two_basins(u)
-        return local_refine(evaluate, u0, ["g"], **kw, **more), calls
-
-    alone, first = recorded(starts[0], max_evaluations=40)
-    multi, calls = recorded(starts, max_evaluations=80, start_evaluations=10)
+    alone, first = _recorded(starts[0], max_evaluations=40)
+    multi, calls = _recorded(starts, max_evaluations=80, start_evaluations=10)
     assert calls[:len(first)] == first
     # the first start stops at its share (it would use any budget: alone on 40 it takes all 40), and
     # the next point is the second start's: 40 of the 80 are left for 3 screens and the polish
     assert len(first) == 40 and calls[len(first)] == np.asarray(starts[1], dtype=float).tobytes()
     assert multi.evaluations <= 80 and multi.runs >= alone.runs + 3
     assert multi.value <= alone.value
-    tight, calls = recorded(starts, max_evaluations=12, start_evaluations=10)
+    tight, calls = _recorded(starts, max_evaluations=12, start_evaluations=10)
     assert tight.evaluations <= 12
     assert tight.runs < len(starts)
+
+
+def test_the_first_start_keeps_at_least_half_the_budget():
+    """A budget below the starts' share (100 against 3 starts x 35, an independent check of session
+    32) left the verified best's own run n_min = d + 2 points: no COBYLA step, the best reported
+    unchanged. The other starts are now as many as their share fits in half the budget, so with
+    100 the first start runs alone on all of it (as with one start: the same points in the same
+    order), and with 220 (the shipped studies) all 3 starts run as before."""
+    starts = [[0.25, 0.25], [0.5, 0.55], [0.1, 0.9]]
+    alone, first = _recorded(starts[0], max_evaluations=100)
+    small, calls = _recorded(starts, max_evaluations=100, start_evaluations=35)
+    assert small.starts == 1 and calls == first and small.value == alone.value
+    assert len(first) > 2 + 2                     # more than the start and one simplex
+    ample = _recorded(starts, max_evaluations=220, start_evaluations=35)[0]
+    assert ample.starts == 3
 
 
 def test_distinct_starts_keeps_the_best_of_each_neighbourhood():
