@@ -14,8 +14,7 @@ from omegaconf import DictConfig, OmegaConf
 from omegaconf.errors import OmegaConfBaseException
 
 import sim
-from sim.api import GeometryError, InputError
-from sim.config_schema import not_a_key
+from sim.api import GeometryError, InputError, not_a_key
 from studies.cycle import LOAD_KEYS, DutyCycle
 from studies.space import DESIGN_PARAMETERS
 

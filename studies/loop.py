@@ -474,15 +474,18 @@ class DesignSearch:
                     return part.isel(design=[int(hit[0])])
             return None
 
+        seen = set()    # this stage's points (the starts included), as local_refine counts them against n_max;
+        # stored refinement points of an earlier stage from other starts (a resume with a larger budget) do not count
+
         def evaluate(u):
             x = self.space.low + u * span
+            seen.add(x.tobytes())
             p = stored(x)
             if p is None:
                 p = self.simulate(x[None, :], REFINEMENT, REFINEMENT_ROUND)
                 self._refined = xr.concat([self._refined, p], dim="design", combine_attrs="override", data_vars="all")
                 self.save_training(ds)
-                done = self._refined.sizes["design"]
-                self.log(f"local stage: simulation {done} of at most {n_max - 1}: "
+                self.log(f"local stage: point {len(seen)} of at most {n_max} (the starts included): "
                          f"{self.objective} {float(self.objective_values(p)[0]):.6g} ({STATUS_NAMES[int(p.status.values[0])]})")
             ok = int(p.status.values[0]) == STATUS["ok"]
             return (float(self.objective_values(p)[0]) if ok else np.nan), self.point_margins(p)[0]

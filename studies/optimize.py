@@ -19,6 +19,7 @@ import time
 from pathlib import Path
 
 from sim.api.cli import PROJECT_ERRORS, refused
+from sim.api.sweep import remove_stale_files
 from studies.config import LOAD_KEYS, StudyConfigError, compose, output_dir
 from studies.loop import DesignSearch
 from studies.report import write_report
@@ -69,6 +70,8 @@ def prepared_search(overrides, log, one_case=None):
     simulation. Raises one of :data:`STUDY_ERRORS`."""
     cfg = compose(overrides)
     new = new_folders(output_dir(cfg.study))
+    for folder in (output_dir(cfg.study), output_dir(cfg.study) / "pareto"):
+        remove_stale_files(folder)      # temporaries of a write a kill -9 interrupted (session 32, an independent check)
     try:
         search = DesignSearch(cfg, overrides, log=log)
         if one_case is not None:

@@ -313,7 +313,7 @@ def reference_point(front, label):
 
 def plot_front(front, ds, refs, path, load_label):
     x, y = front.pair
-    fig = Figure(figsize=(7.5, 5.2), layout="constrained")
+    fig = Figure(figsize=(10.0, 5.2), layout="constrained")
     ax = fig.subplots()
     feas = ds.feasible.values
     ax.plot(ds[x].values[~feas], ds[y].values[~feas], ".", color="0.8", ms=4, label="infeasible (simulated)")
@@ -326,12 +326,15 @@ def plot_front(front, ds, refs, path, load_label):
             note = {None: "", True: ", feasible", False: ", infeasible here"}[feasible]
             ax.plot(*point, marker, ms=13, color="k" if marker == "*" else "C2", label=label + note,
                     mfc="none" if feasible is False else None)
-    ax.set(xlabel=f"{OBJECTIVES[x][1]} [{OBJECTIVES[x][2]}]", ylabel=f"{OBJECTIVES[y][1]} [{OBJECTIVES[y][2]}]",
-           title=f"{OBJECTIVES[x][1]} vs {OBJECTIVES[y][1]}: {int(feas.sum())} feasible of {feas.size} simulated designs\n{load_label}")
+    # the title in lines that fit the figure, the legend outside the axes (session 32, an independent check:
+    # a one-line title was cut off, and the legend covered the front's high-L10 end)
+    ax.set(xlabel=f"{OBJECTIVES[x][1]} [{OBJECTIVES[x][2]}]", ylabel=f"{OBJECTIVES[y][1]} [{OBJECTIVES[y][2]}]")
+    ax.set_title(f"{OBJECTIVES[x][1]} vs {OBJECTIVES[y][1]}\n{int(feas.sum())} feasible of {feas.size} simulated "
+                 f"designs\n{load_label}", fontsize=9, wrap=True)
     if y == "L10":
         ax.set_yscale("log")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0)
     write_figure_atomic(fig, path, 120)
     return path
 

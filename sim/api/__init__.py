@@ -6,6 +6,7 @@ from sim.api.bearing_model import OperatingPoint
 from sim.api.cases import operating_points
 from sim.api.processes import worker_pool
 from sim.api.simulation import build_model, simulate, simulate_batch
+from sim.api.schema import not_a_key
 from sim.api.traction import TRACTION_LAWS, bearing_model_traction_law, traction_curve, twin_disc_contact
 from sim.errors import ConfigError, GeometryError, InputError
 from sim.geometry import Geometry
@@ -16,6 +17,6 @@ from sim.physics.reference_models import (SKF_TAPERED_CONSTANTS, aihara_1987_trb
 
 __all__ = ["ConfigError", "Geometry", "GeometryError", "InputError", "Lubricant", "OperatingPoint",
            "SKF_TAPERED_CONSTANTS", "TRACTION_LAWS", "aihara_1987_trb", "aihara_rolling_moment",
-           "bearing_model_traction_law", "build_model", "operating_points", "pressure_viscosity_roelands", "ratings", "simulate",
+           "bearing_model_traction_law", "build_model", "not_a_key", "operating_points", "pressure_viscosity_roelands", "ratings", "simulate",
            "simulate_batch", "skf_2004_trb",
            "torque_exponent", "traction_curve", "twin_disc_contact", "worker_pool"]

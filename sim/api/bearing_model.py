@@ -259,16 +259,16 @@ class BearingModel:
         bound = op.Fr * float(np.tan(angle))
         if op.Fr > 0.0 and not op.Fa > bound:
             why = ("each roller presses the inner ring at the cup angle (its rib and inner raceway balance the cup's "
-                   "normal force)" if g.type == "TRB" else
+                   "normal force), so below it the inner ring has no equilibrium with its axial position free"
+                   if g.type == "TRB" else
                    "each roller presses the inner ring normal to its own axis (its raceway forces act through the "
-                   "centres of its two crown circles, which lie on a normal to the axis); below it the rollers carry "
-                   "the load only tilted by degrees in their osculating raceways, with the ring millimetres off its "
-                   "place and the contacts beyond the rings' width")
+                   "centres of its two crown circles, which lie on a normal to the axis), so below it the inner ring "
+                   "has no equilibrium at the rollers' place, only one with the rollers tilted by degrees in their "
+                   "osculating raceways and the ring millimetres off")
             raise InputError(
-                f"load.Fa = {op.Fa:g} N is outside the allowed range for this bearing at load.Fr = {op.Fr:g} N: "
-                f"> Fr tan({float(np.degrees(angle)):.4g} deg) = {bound:.6g} N, the single row's axial share: "
-                f"{why}; below it the inner ring has no equilibrium with its axial position free (an opposed "
-                "bearing would take the rest)")
+                f"load.Fa = {op.Fa:.8g} N is outside the allowed range for this bearing at load.Fr = {op.Fr:g} N: "
+                f"> Fr tan({float(np.degrees(angle)):.4g} deg) = {bound:.8g} N, the single row's axial share: "
+                f"{why} (an opposed bearing would take the rest)")
 
     def body_loads(self, op: OperatingPoint):
         """Body loads on a loaded roller, rolling kinematics (2.20), (2.22): BodyLoads(centrifugal

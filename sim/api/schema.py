@@ -27,7 +27,7 @@ from omegaconf import DictConfig, OmegaConf
 from sim.api.cases import operating_points
 from sim.config_schema import (MISSING, SCHEMAS, BearingConfig, Choice, DragConfig, Flag,  # noqa: F401  re-exported
                                FrictionConfig, LoadConfig, LubricantConfig, MaterialConfig, Number, OutputConfig,
-                               SolverConfig, SurfaceConfig, Text, key, mm, node_problems)
+                               SolverConfig, SurfaceConfig, Text, key, mm, node_problems, not_a_key)
 from sim.errors import ConfigError, InputError
 
 for _group, _node in SCHEMAS.items():

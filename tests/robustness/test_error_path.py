@@ -216,3 +216,32 @@ def test_a_run_with_long_full_precision_overrides_makes_its_folder(tmp_path):
     assert len(folders) == 2 and all((f / "result.nc").is_file() for f in folders)
     assert all(len(f.name.encode()) <= 255 for f in folders)
     assert len({f.name.split("_", 1)[1] for f in folders}) == 2
+
+
+def test_a_study_removes_the_temporary_a_killed_write_left(tmp_path, monkeypatch):
+    """kill -9 during a write of training.nc left its temporary (.training.nc.<host>-<pid>-<hex>.tmp)
+    beside it, and the resumed study finished with it still there (session 32, an independent
+    check). A study's start removes the temporaries of dead writers in its folder (and in its
+    pareto folder), as a run does in its own (sim.api.sweep.remove_stale_files); here the start is
+    stopped right after, before any simulation."""
+    import subprocess
+    import sys
+
+    from sim.io import HOST_TAG
+    from studies.config import compose, output_dir
+
+    monkeypatch.chdir(tmp_path)
+    proc = subprocess.Popen([sys.executable, "-c", "pass"])
+    proc.wait()
+    folder = output_dir(compose(["study.name=killed"]).study)
+    stale = [folder / f".training.nc.{HOST_TAG}-{proc.pid}-0a1b2c3d.tmp",
+             folder / "pareto" / f".local_points.nc.{HOST_TAG}-{proc.pid}-0a1b2c3d.tmp"]
+    for path in stale:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(b"partial")
+
+    def stop(*args, **kwargs):
+        raise StudyConfigError("stopped after the start's clean-up")
+    monkeypatch.setattr(studies.optimize, "DesignSearch", stop)
+    assert studies.optimize.main(["study.name=killed"]) == 2
+    assert not any(p.exists() for p in stale)

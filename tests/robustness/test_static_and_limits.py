@@ -242,7 +242,7 @@ def test_axial_load_below_the_single_row_bound_is_refused_by_name(bearing, Fr):
         _sim(f"bearing={bearing}", f"load.Fa={bound * (1 - 1e-9)!r}", f"load.Fr={Fr}", *FAST)
     message = str(err.value)
     for fragment in ("load.Fa = ", "outside the allowed range", f"load.Fr = {Fr:g} N",
-                     f"> Fr tan({np.degrees(beta):.4g} deg) = {bound:.6g} N", "equilibrium"):
+                     f"> Fr tan({np.degrees(beta):.4g} deg) = {bound:.8g} N", "equilibrium"):
         assert fragment in message, (fragment, message)
 
 

@@ -55,3 +55,42 @@ def test_history_numbers_simulations_as_the_report_and_keeps_the_legend_off_the_
     assert not ax.get_legend() and fig.legends            # the legend is the figure's, beside the axes
     labels = [t.get_text() for t in fig.legends[0].get_texts()]
     assert "verified best" not in labels                  # nothing feasible: no such line, no such entry
+
+
+def test_the_cross_validation_table_flags_coverage_outside_the_target():
+    """Issue 16 item 1: 95 % intervals should cover 0.92-0.98 of the points in cross-validation.
+    The report printed 0.831-0.913 without a word (session 32, an independent check); each output
+    now carries met / below / above, and a line names those outside."""
+    y = np.linspace(1.0, 2.0, 60)
+    cv = {name: CrossValidation(y, y, y - 0.1, y + 0.1, 0.95, 0.99, 0.01, coverage)
+          for name, coverage in (("torque", 0.95), ("pmax", 0.92), ("edge_stress_margin", 0.842), ("L10", 0.99))}
+    text = report.cv_table(cv)
+    rows = {line.split("|")[1].strip(): line for line in text.splitlines() if line.startswith("| ") and "---" not in line}
+    assert rows["torque"].endswith("0.92-0.98: met |") and rows["pmax"].endswith("0.92-0.98: met |")
+    assert rows["edge_stress_margin"].endswith("below |") and rows["L10"].endswith("above |")
+    assert "Coverage outside the target" in text and "edge_stress_margin 0.842, L10 0.990" in text
+
+
+def test_an_infeasible_local_stage_names_what_it_violates_and_claims_nothing_of_the_bounds():
+    """An infeasible end of the local stage (an independent check of session 32: "Active constraints:
+    edge_stress" while pmax was violated, and "widening the range may lower the objective" of a point
+    that meets no constraint set): the violated margins are named with their values, and the bounds
+    are not read as the optimum's place; a feasible end keeps the bound statement."""
+    from types import SimpleNamespace
+
+    from studies.refine import LocalResult
+
+    def text(margins):
+        L = LocalResult(u=np.array([1.0, 0.5]), value=5610.1, margins=np.array(margins), start_value=5700.0,
+                        evaluations=30, message="Maximum number of function evaluations", runs=1,
+                        active_constraints=["edge_stress"], active_bounds=[(0, "high")])
+        search = SimpleNamespace(local=L, study=SimpleNamespace(bounds={"PCR": [28.0, 170.0], "kappa": [0.9, 0.995]}),
+                                 space=SimpleNamespace(names=["PCR", "kappa"]), objective="torque",
+                                 limits=SimpleNamespace(names=["simulation", "pmax", "edge_stress"]))
+        return report.local_stage_text(search)
+
+    bad = text([-1.0, 0.004, 0.0])
+    assert "INFEASIBLE" in bad and "Violated constraints (margin > 0): pmax +0.004." in bad
+    assert "widening the range" not in bad and "say nothing about where the optimum lies" in bad
+    good = text([-1.0, -0.01, 0.0])
+    assert "Violated" not in good and "PCR at its high bound 170" in good and "widening the range" in good
