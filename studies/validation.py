@@ -75,8 +75,9 @@ PRESSURE_VISCOSITY_TEMPERATURES = tuple(float(t) for t in range(20, 125, 5))
 LOADS = (1500.0, 3000.0, 4500.0, 10000.0, 20000.0, 40000.0)
 QUICK_LOADS = (4500.0, 40000.0)
 FIT_RANGE = (4500.0, 40000.0)        # N, range of the fitted exponent n (issue 14 item 5)
-#: A torque component below this share of the torque over FIT_RANGE gets no load exponent: its value is
-#: round-off and regularisation (the TRB 32208's sliding, <= 0.2 N mm), and a fit to it means nothing.
+#: A torque component that stays below this share of the torque everywhere in FIT_RANGE gets no load
+#: exponent: its value is round-off and regularisation (the TRB 32208's sliding, <= 0.2 N mm), and a fit
+#: to it means nothing.
 COMPONENT_FIT_SHARE = 0.01
 #: Rig conditions of sections a, b (2000 rpm, FVA 3 at 55 degC): conf/load/test_rig_fig_6_9.yaml.
 RIG_LOAD = "test_rig_fig_6_9"
@@ -440,7 +441,7 @@ def compute(quick=False, traction_data=TRACTION_DATA, log=print):
     n = {k: _exponent_or_nan(np.array(loads)[fit], v[fit]) for k, v in series.items()}
     n["thesis 7.2.5"] = math.log(THESIS_TRB_32208[40000.0] / THESIS_TRB_32208[4500.0]) / math.log(40000.0 / 4500.0)
     parts = ds.torque_component_trb_32208.values[fit]
-    meaningful = np.all(parts >= COMPONENT_FIT_SHARE * ds.torque_trb_32208.values[fit][:, None], axis=0)
+    meaningful = np.any(parts >= COMPONENT_FIT_SHARE * ds.torque_trb_32208.values[fit][:, None], axis=0)
     n.update({f"this model, {c}": _exponent_or_nan(np.array(loads)[fit], parts[:, k]) if meaningful[k] else np.nan
               for k, c in enumerate(components)})
     ds = ds.assign_coords(model=("model", list(n), {"long_name": "torque model"}))
