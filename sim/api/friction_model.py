@@ -177,12 +177,13 @@ class FrictionModel:
         static = op.speed_rpm == 0.0
         speed = BREAKAWAY_NOMINAL_SPEED if static else op.speed_rpm
         wi = float(angular_speed(speed))
-        if static:   # no film, Coulomb friction wherever a contact slips; no drag (it goes as the speed squared)
-            par = par._replace(solid=par.solid._replace(v_s=BREAKAWAY_SLIP_RESOLUTION * wi * 0.5 * g.Dpw), drag_k=0.0,
-                               boundary_only=True)
-        else:        # creeping speeds: full slip at a creepage (conf/friction/default.yaml, solid_slip_ratio),
-            # so that the torque tends to the breakaway torque as the speed falls to 0
-            par = par._replace(solid=par.solid._replace(v_s=min(par.solid.v_s, self.solid_slip_ratio * wi * 0.5 * g.Dpw)))
+        # the boundary friction's regularising slip: at most a share of the pitch surface speed, a creepage
+        # (conf/friction/default.yaml, solid_slip_ratio; so that the torque tends to the breakaway torque as the
+        # speed falls to 0), and for the breakaway case its resolution (Coulomb friction wherever a contact slips)
+        ratio = BREAKAWAY_SLIP_RESOLUTION if static else self.solid_slip_ratio
+        par = par._replace(solid=par.solid._replace(v_s=min(par.solid.v_s, ratio * wi * 0.5 * g.Dpw)))
+        if static:   # no film; no drag (it goes as the speed squared)
+            par = par._replace(drag_k=0.0, boundary_only=True)
         frames = raw["frames"]          # contact frames at the solution, from the quasi-static solve
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), rib_end=self.rib_end,

@@ -21,6 +21,8 @@ job starts), :func:`sim.api.simulation.simulate` and :func:`sim.api.simulation.b
 Combined feasibility (a roller that does not fit, aPk + aP >= Lwe) stays with
 :mod:`sim.geometry` and fails the point, not the sweep.
 """
+import hashlib
+
 from hydra.core.config_store import ConfigStore
 from omegaconf import DictConfig, OmegaConf
 
@@ -44,8 +46,6 @@ def run_folder_name(overrides):
     """The overrides part of a run folder's name (``${run_folder_name:${hydra.job.override_dirname}}``):
     the overrides themselves when they fit in RUN_FOLDER_OVERRIDES_BYTES, else their start and a hash of all
     of them (sha1, RUN_FOLDER_HASH_CHARS hex digits), so that two long commands keep apart."""
-    import hashlib
-
     text = str(overrides)
     raw = text.encode()
     if len(raw) <= RUN_FOLDER_OVERRIDES_BYTES:
