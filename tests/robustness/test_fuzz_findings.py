@@ -143,6 +143,9 @@ UNSETTLED_FREE_ROLLERS = {
     # converged before, but on a state 0.4 % off in torque (the sweeps had settled on a lap that did not close)
     "settled off the solution": ("tsrb_pinion_alpha", 12848.709201566704, 4334.515810088229, 6337.922191364763,
                                  34.39106702304242),
+    # a 54 N roller arriving at a pocket wall's onset: Newton stalled in the wall spring's kink (session 32's
+    # checker: 1 of 21 cases of an Fr sweep 3-5 kN; sim.solvers.kinematics._solve_free_roller, middle of the play)
+    "stalled at a wall's onset": ("tsrb_prototype", 4500.0, 4400.0, 2000.0, 55.0),
 }
 
 
