@@ -192,11 +192,23 @@ def _solve_roller_speed(j, w0, psi, wc, wi, case, ev, tol_M, max_iter):
     sim._math.roots).
 
     Returns (omega_R [rad/s], converged); w0 when no bracket is found. M(omega_R) falls with
-    omega_R: more spin, more drag.
+    omega_R: more spin, more drag. The first bracket is ROLLER_BRACKET x w0, its ends in
+    ascending order (the search widens upwards from hi where M > 0 at both ends): a start at a
+    negative spin (a roller of ~0.1 N at the load zone's edge, where the film's moment on it is
+    flat in its spin beyond a steep step near rolling, and a loose seed pass accepted -270 rad/s:
+    tsrb_reference at 7.58 / 21.2 kN, 189 rpm, tilt -0.124 deg) widened downwards, away from the
+    root; at w0 = 0, +-(1 - ROLLER_BRACKET[0]) |wc| (a roller spins Dpw / Dwe times faster than
+    the cage).
     """
     lo = ROLLER_BRACKET[0] * w0
+    hi = ROLLER_BRACKET[1] * w0
+    if hi < lo:
+        lo, hi = hi, lo
+    elif hi == lo:
+        lo -= (1.0 - ROLLER_BRACKET[0]) * abs(wc)
+        hi += (ROLLER_BRACKET[1] - 1.0) * abs(wc)
     roller_friction(j, lo, psi, wc, wi, case, ev)
-    search = root_search(lo, ev[EV_MU], ROLLER_BRACKET[1] * w0, tol_M, 0.0, max_iter)
+    search = root_search(lo, ev[EV_MU], hi, tol_M, 0.0, max_iter)
     while not search.done:
         roller_friction(j, search.x, psi, wc, wi, case, ev)
         search = root_search_step(search, ev[EV_MU])
@@ -933,6 +945,13 @@ CAGE_PROBE_STEP = 1e-3
 # cage balance, the states at its ends averaged to balance the cage: far below what moves a loss (the time
 # domain's steady state resolves the cage speed to 1e-4, solver.dynamic.steady_tolerance_speed); numerical choice.
 CAGE_SPEED_RESOLUTION = 1e-9
+# Before a bracket of the free rollers' cage balance (free_roller_speeds), a Newton step after which the balance
+# moved by less than this fraction of what the step's slope predicted is followed by probe steps
+# (CAGE_PROBE_STEP): the slope from the rollers' linearisations sees the walls' stiffness, while the z-moments
+# of rollers on walls in mixed friction can be flat in the cage speed (TRB 31313 at 56.8 / 97.2 kN, 620 rpm,
+# 106 degC, tilt -0.05 deg: the balance stayed at 1.6055 N mm over 60 Newton steps of 2e-5 of the cage speed
+# each); numerical choice.
+CAGE_STALL = 0.1
 # How far beyond the cage speed at which the next roller inside the play meets a wall a Newton step of the
 # cage balance may go (free_roller_speeds), relative to that step: onto the wall, where the balance's slope
 # changes; numerical choice.
@@ -1202,6 +1221,8 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
         retreats = 0
         have_state = False          # at_lo or at_hi holds the state at wc_prev
         wc_prev = 0.0
+        F_prev = 0.0                # the cage balance at wc_prev
+        dF_pred = 0.0               # the change of it that the last Newton step's slope predicted
         balanced = False
         for _ in range(settings.max_iter):      # cage speed steps at this film
             c_spin, reach = _slot(free, wc, Z)
@@ -1365,6 +1386,11 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                     break
                 slope = _cage_slope(free, active, reach, first, direction, jac, c_spin)
                 limit = CAGE_PROBE_STEP * abs(wc) * 2.0 ** probes
+                if (have_state and not (np.isfinite(lo) and np.isfinite(hi))
+                        and abs(F - F_prev) < CAGE_STALL * abs(dF_pred)):
+                    # no bracket yet and the balance moved by far less than its slope predicted (rollers on walls
+                    # whose z-moments are flat in the cage speed): probe steps, doubling, until it changes sign
+                    slope = 0.0
                 wc_new = wc - F / slope if slope < 0.0 else wc + limit * np.sign(F)
                 # the slope holds until the next roller inside the play meets the wall the balance needs (the
                 # places move by -reach per unit cage speed per slot since the last roller on a wall, the rollers
@@ -1389,6 +1415,10 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                     else:
                         wc_new = wc + max(-limit, min(limit, wc_new - wc))
                         probes += 1
+                elif slope >= 0.0:
+                    probes += 1
+                F_prev = F
+                dF_pred = slope * (wc_new - wc)
                 wc_prev = wc
                 have_state = True
             if wc_new == wc:

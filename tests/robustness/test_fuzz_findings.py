@@ -132,7 +132,7 @@ def test_slow_pinion_case_with_its_friction_loads_converges():
 # Random in-range cases (session 26's sampling: Fa 5-100 % of half the pure-axial static limit, Fr 0-3 Fa,
 # 30-8000 rpm, 20-110 degC; seeds 8-11) whose free-roller kinematics did not settle (sim.solvers.kinematics
 # free_roller_speeds): TRBs under heavy radial loads, rollers on their pocket walls. (bearing, Fa [N], Fr [N],
-# speed [rpm], oil temperature [degC])
+# speed [rpm], oil temperature [degC][, tilt [deg]])
 UNSETTLED_FREE_ROLLERS = {
     # the lap's closure alternated between two states (LOOP_PLAIN_SWEEPS: its root search)
     "two-state lap": ("trb_32208", 12983.884357128805, 28911.6104262597, 7916.006662907834, 106.33541631903543),
@@ -146,6 +146,12 @@ UNSETTLED_FREE_ROLLERS = {
     # a 54 N roller arriving at a pocket wall's onset: Newton stalled in the wall spring's kink (session 32's
     # checker: 1 of 21 cases of an Fr sweep 3-5 kN; sim.solvers.kinematics._solve_free_roller, middle of the play)
     "stalled at a wall's onset": ("tsrb_prototype", 4500.0, 4400.0, 2000.0, 55.0),
+    # session 33's survey (seed 34, 1500 random cases): a 0.1 N roller at the load zone's edge that the loose seed
+    # pass left spinning backwards, whose bracketed spin search then widened away from the root
+    # (sim.solvers.kinematics._solve_roller_speed), and a cage balance flat in the cage speed over 60 Newton steps
+    # (CAGE_STALL)
+    "spin bracket from a backward spin": ("tsrb_reference", 7580.5, 21203.9, 189.3, 66.2, -0.124),
+    "cage balance flat in the cage speed": ("trb_31313", 56821.0, 97202.0, 620.6, 106.0, -0.0507),
 }
 
 
@@ -157,8 +163,8 @@ def test_free_roller_kinematics_settle_on_the_solution(name):
     from sim.api.bearing_model import OperatingPoint
     from sim.api.simulation import build_friction, build_model, solve_case
 
-    bearing, Fa, Fr, speed, oil = UNSETTLED_FREE_ROLLERS[name]
-    op = OperatingPoint(Fa, Fr, speed, 0.0, oil)
+    bearing, Fa, Fr, speed, oil, *tilt = UNSETTLED_FREE_ROLLERS[name]
+    op = OperatingPoint(Fa, Fr, speed, tilt[0] if tilt else 0.0, oil)
     torque = []
     for tolerance in ("1e-6", "1e-7"):
         cfg = sim.load_config([f"bearing={bearing}", f"friction.tolerance={tolerance}"])
