@@ -25,7 +25,7 @@ from hydra.core.hydra_config import HydraConfig
 from hydra.types import RunMode
 from omegaconf import DictConfig
 
-from sim import io
+from sim import CONF_DIR, io
 from sim.api.cli import PROJECT_ERRORS, refuse
 from sim.api.sweep import NEW_RUN_DIRS, WriteError, remove_stale_files, run_cases, run_job, write_result
 from sim.config_schema import undeclared_key
@@ -108,8 +108,31 @@ def undeclared_overrides(argv):
     return [p for p in map(undeclared_key, keys) if p]
 
 
+def missing_config_file(argv):
+    """Hydra's reason when an override of a single run names a config file that does not exist
+    (``bearing=tsrb_pinnion``, ``hydra/launcher=foo``: "Could not find ..." with the available
+    options), else "". A multirun checks every job's config itself (SweepCallback.on_multirun_start)."""
+    from hydra import compose, initialize_config_dir
+    from hydra.errors import MissingConfigException
+
+    if any(a in ("-m", "--multirun") for a in argv):
+        return ""
+    overrides = [a for a in argv if "=" in a and not a.startswith("-")]
+    with initialize_config_dir(config_dir=str(CONF_DIR), version_base="1.3"):
+        try:
+            compose(config_name="config", overrides=overrides, return_hydra_config=True)
+        except MissingConfigException as exc:
+            return str(exc)
+        except Exception:   # noqa: BLE001  any other composition error: hydra.main below reports it as ever
+            return ""
+    return ""
+
+
 if __name__ == "__main__":
     problems = undeclared_overrides(sys.argv[1:])
     if problems:    # one line and exit 2, as any refused input, where Hydra would print several and exit 1
         refuse("run refused before anything ran: " + "; ".join(problems))
+    missing = missing_config_file(sys.argv[1:])
+    if missing:
+        refuse(f"run refused before anything ran: {missing}")
     main()

@@ -30,8 +30,14 @@ from tests.robustness.common import FAST, REPO, assert_refused, run
     (["bearing.kapa=0.9"], ["bearing.kapa is not a config key (did you mean bearing.kappa?)"], None),
     (["friction.skew.pocket_clerance=0.1"],
      ["friction.skew.pocket_clerance is not a config key (did you mean friction.skew.pocket_clearance?)"], None),
+    # a config file that does not exist: Hydra refused it itself, in 11-18 lines with exit status 1 (session 33's
+    # checker; a multirun already refused it in one line)
+    (["bearing=tsrb_pinnion"], ["Could not find 'bearing/tsrb_pinnion'", "tsrb_pinion;"], None),
+    (["load=sensitivity_scenario"], ["Could not find 'load/sensitivity_scenario'", "sensitivity_scenarios"], None),
+    (["hydra/launcher=foo"], ["Could not find 'hydra/launcher/foo'", "parallel"], None),
 ], ids=["Z_200", "PCR_1e30", "R_33", "aPk_9", "two_bad_values", "trb_end_radius", "trb_end_sphere_conforms", "nu",
-         "added_unknown_key", "unknown_key", "unknown_nested_key"])
+         "added_unknown_key", "unknown_key", "unknown_nested_key", "unknown_bearing_file", "unknown_load_file",
+         "unknown_launcher"])
 def test_single_run_refuses_in_one_line_and_makes_no_folder(tmp_path, overrides, fragments, not_blamed):
     run_dir = tmp_path / "run"
     out = run(["-m", "sim.run", *overrides, *FAST, f"hydra.run.dir={run_dir}", "output.cache_dir=null"], tmp_path)
