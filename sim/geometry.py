@@ -172,6 +172,9 @@ class Geometry:
 
     type: str
     alpha: float
+    #: alpha as configured [deg]: the design coordinate (sim.io.design_values), equal to the value given,
+    #: which degrees(radians(x)) is not (15 -> 14.999999999999998), so that a sweep's .sel(alpha=15) finds it
+    alpha_deg: float
     gamma: float
     Dpw: float
     Dwe: float
@@ -246,7 +249,7 @@ class Geometry:
         gamma = taper_angle(alpha, Dwe, Dpw)
         if kind == "TRB":
             extra["ratings_alpha"] = float(np.degrees(alpha + gamma))  # ISO 281: the cup angle
-        g = cls(type=kind, alpha=alpha, gamma=gamma, Dpw=Dpw, Dwe=Dwe,
+        g = cls(type=kind, alpha=alpha, alpha_deg=float(b["alpha"]), gamma=gamma, Dpw=Dpw, Dwe=Dwe,
                 Lwe=float(b["Lwe"]), B=float(b["B"]), r=float(b["r"]), R=float(b["R"]), Z=int(b["Z"]),
                 b_m=float(b["b_m"]), cage_web_ratio=float(b["cage_web_ratio"]), E=E, nu=nu, density=rho * 1e-12,
                 n_slices=int(n_slices), **extra)
@@ -277,7 +280,7 @@ class Geometry:
 
     def _with(self, *names):
         """'Dpw = 60.0, Dwe = 10.0': the given keys with their values (angles in deg, as configured)."""
-        shown = {"alpha": float(np.degrees(self.alpha))}
+        shown = {"alpha": self.alpha_deg}
         return ", ".join(f"{n} = {shown.get(n, getattr(self, n))!r}" for n in names)
 
     def _check(self):

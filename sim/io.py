@@ -189,7 +189,7 @@ def provenance_attrs(title, config_yaml, settings):
 def design_values(geometry):
     """Design coordinates (DATA.md, :data:`DESIGN_COORDS`) of a geometry: name -> value."""
     g = geometry
-    values = {"alpha": np.degrees(g.alpha), "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
+    values = {"alpha": g.alpha_deg, "gamma": np.degrees(g.gamma), "Dpw": g.Dpw, "Dwe": g.Dwe,
               "Lwe": g.Lwe, "Z": g.Z}
     if g.type == "TSRB":
         values.update(PCR=g.PCR, kappa=g.kappa, aP=g.aP, aPk=g.aPk, aA=g.aA, PCR_LB=g.PCR_LB)
@@ -515,7 +515,9 @@ def combine_designs(datasets, extra_coords):
         the union in order of first appearance; a design lacking a case holds NaN there with
         ``converged = False``. A design coordinate that some designs lack (PCR of a TRB) is NaN
         (or "") there. ``x_slice`` stays on ``slice`` while all computed designs share it, else
-        it becomes (design, slice). Attributes are those of the first Dataset.
+        it becomes (slice, design): DATA.md's ``x_slice (slice)`` with ``design`` as an extra
+        trailing dimension (a sweep over Lwe or solver.n_slices). Attributes are those of the first
+        Dataset.
     """
     keys = [list(zip(*(ds[c].values.tolist() for c in CASE_COORDS))) for ds in datasets]
     union = list(dict.fromkeys(k for ks in keys for k in ks))
@@ -545,6 +547,8 @@ def combine_designs(datasets, extra_coords):
         {c: ("case", list(v), datasets[0][c].attrs) for c, v in zip(CASE_COORDS, zip(*union))})
     if shared_x:
         out = out.assign_coords(x_slice=("slice", list(next(iter(x_slices))), x_attrs))
+    elif "x_slice" in out.coords:
+        out = out.assign_coords(x_slice=out.x_slice.transpose("slice", "design"))
     return out.assign_coords({name: ("design", values, attrs) for name, (values, attrs) in extra_coords.items()})
 
 
@@ -690,11 +694,11 @@ def build_batch_dataset(designs):
         if len(x_slices) == 1:
             coords["x_slice"] = _var("slice", computed[0].geometry.x_slice_from_large_end, X_SLICE_ATTRS)
         else:
-            x = np.full((n_designs, sizes["slice"]), np.nan)
+            x = np.full((sizes["slice"], n_designs), np.nan)
             for i, d in enumerate(designs):
                 if isinstance(d, DesignResult):
-                    x[i, :d.geometry.n_slices] = d.geometry.x_slice_from_large_end
-            coords["x_slice"] = _var(("design", "slice"), x, X_SLICE_ATTRS)
+                    x[:d.geometry.n_slices, i] = d.geometry.x_slice_from_large_end
+            coords["x_slice"] = _var(("slice", "design"), x, X_SLICE_ATTRS)     # DATA.md: (slice), design trailing
     for name, (units, long_name) in CASE_COORD_ATTRS.items():
         coords[name] = _var("case", [k[CASE_COORDS.index(name)] for k in union],
                             {"units": units, "long_name": long_name})

@@ -75,7 +75,7 @@ def test_batch_equals_per_design_simulate(batch):
     cfgs, ds = batch
     expected = io.combine_designs([per_design(cfg) for cfg in cfgs], {})
     assert_same_results(ds, expected)
-    assert ds.sizes["design"] == 5 and ds.x_slice.dims == ("design", "slice")
+    assert ds.sizes["design"] == 5 and ds.x_slice.dims == ("slice", "design")
     np.testing.assert_array_equal(ds.Fa, [3000.0, 5000.0, 3000.0, 7000.0, 4500.0])
     for d, cfg in enumerate(cfgs):
         assert str(ds.design_config.values[d]) == OmegaConf.to_yaml(cfg, resolve=True)
@@ -126,7 +126,7 @@ def test_unlike_designs_with_a_failure_combine():
     cfgs = configs([*FAST, "bearing=trb_31313", "load.Fa=3000", "load.Fr=0"], [*FAST, "load.Fa=3000", "load.Fr=0"],
                    [*FAST, "bearing.PCR=8", "load.Fa=3000", "load.Fr=0"])
     ds = io.combine_designs([per_design(cfg) for cfg in cfgs], {})
-    assert ds.x_slice.dims == ("design", "slice") and ds.x_slice.isel(design=2).isnull().all()
+    assert ds.x_slice.dims == ("slice", "design") and ds.x_slice.isel(design=2).isnull().all()
     assert ds.slice.dtype.kind == "i" and ds.sizes["slice"] == 8
     assert ds.converged.values.tolist() == [[True], [True], [False]]
 

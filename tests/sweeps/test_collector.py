@@ -68,7 +68,7 @@ def test_job_that_never_finished_is_reported_missing(parallel_sweep, tmp_path):
     assert ds.pmax.isel(design=1, case=[2, 3]).isnull().all() and ds.pmax.isel(design=1, case=[0, 1]).notnull().all()
 
 
-def test_unlike_designs_combine():
+def test_unlike_designs_combine(tmp_path):
     """TRB 31313 (Z 13, Lwe 24.2) and the reference TSRB (Z 17, Lwe 17) with different load cases:
     the case union, NaN where a design lacks a case, roller, PCR and x_slice per design."""
     trb = sim.simulate(sim.load_config([*FAST, "bearing=trb_31313", "load.Fa=[3000,5000]", "load.Fr=0"]))
@@ -79,8 +79,24 @@ def test_unlike_designs_combine():
     assert ds.pmax.isel(design=0, case=2).isnull().all() and ds.pmax.isel(design=1, case=0).isnull().all()
     assert ds.sizes["roller"] == 17 and ds.Q.isel(design=0, case=0, roller=slice(13, None)).isnull().all()
     assert np.isnan(ds.PCR.values[0]) and ds.PCR.values[1] == 100.0
-    assert ds.x_slice.dims == ("design", "slice")
+    assert ds.x_slice.dims == ("slice", "design")     # DATA.md's x_slice (slice), design trailing
     np.testing.assert_array_equal(ds.pressure.isel(design=1, case=1), tsrb.pressure.isel(design=0, case=0))
+    if CHECKER.exists():    # (design, slice) failed the contract (session 33's checker: a sweep over Lwe or n_slices)
+        path = tmp_path / "unlike.nc"
+        ds.to_netcdf(path)
+        chk = subprocess.run([sys.executable, str(CHECKER), str(path)], capture_output=True, text=True)
+        assert chk.returncode == 0, chk.stdout + chk.stderr
+
+
+def test_the_alpha_coordinate_is_the_value_given():
+    """A design's alpha coordinate is the configured angle itself: it was degrees(radians(alpha)), so a
+    sweep stored 15 as 14.999999999999998 and 24 as 24.000000000000004 (session 33's checker), which split
+    an unstacked sweep into spurious levels and made .sel(alpha=24) fail."""
+    for bearing, alpha in (("tsrb_prototype", 15), ("trb_31313", 24), ("tsrb_reference", 30)):
+        ds = sim.simulate(sim.load_config([*FAST, f"bearing={bearing}", f"bearing.alpha={alpha}", "load.Fr=0",
+                                           "load.Fa=5000"]))
+        assert ds.alpha.values[0] == alpha
+        assert ds.sel(design=ds.alpha == alpha).sizes["design"] == 1
 
 
 def test_sweep_with_friction_collects_its_converged_jobs_and_reports_the_refused_one(friction_sweep):
