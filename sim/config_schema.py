@@ -358,6 +358,7 @@ class DynamicConfig:
     steady_tolerance_torque: Any = key(Number(0.0, 1.0, low_open=True))
     steady_tolerance_load: Any = key(Number(0.0, 1.0, low_open=True))
     steady_tolerance_skew: Any = key(Number(0.0, 1.0, low_open=True))
+    steady_tolerance_power: Any = key(Number(0.0, 1.0, low_open=True))
     fluctuation_windows: Any = key(Number(4, 1000, integer=True))
 
 

@@ -185,7 +185,8 @@ def integration_settings(g, op, body, raw, fr, dyn, omega_n):
                            int(dyn["samples_per_window"]),
                            int(dyn["max_windows"]), float(dyn["steady_tolerance_speed"]),
                            float(dyn["steady_tolerance_torque"]), float(dyn["steady_tolerance_load"]),
-                           float(dyn["steady_tolerance_skew"]), int(dyn["fluctuation_windows"]), scale)
+                           float(dyn["steady_tolerance_skew"]), int(dyn["fluctuation_windows"]), scale,
+                           float(dyn["steady_tolerance_power"]))
 
 
 def run(dcase):

@@ -504,10 +504,11 @@ def jacobian(y, f0, rows0, problem, work, scale, J, rol, tot):
 # outer-ring torque and roller loads, and of the skews over the pocket's skew clearance, below
 # which two consecutive windows count as steady, fluctuation_windows (the block of windows whose
 # means may instead fluctuate about a steady state, fluctuates_about_a_steady_state), scale (state
-# vector: finite-difference step floors, sim.api.dynamic_model).
+# vector: finite-difference step floors, sim.api.dynamic_model), tol_power (the steady windows' power
+# balance, Integration.unbalanced_power).
 DynamicSettings = namedtuple("DynamicSettings", ["method", "rtol", "atol", "window", "window_angle", "samples",
                                                  "max_windows", "tol_speed", "tol_torque", "tol_load", "tol_skew",
-                                                 "fluctuation_windows", "scale"])
+                                                 "fluctuation_windows", "scale", "tol_power"])
 
 
 class Integration:
@@ -637,6 +638,7 @@ class Integration:
                 if (d_speed < s.tol_speed and d_torque < s.tol_torque and d_load < s.tol_load
                         and d_skew < s.tol_skew):
                     self.steady = True
+                    self.failure = self.unbalanced_power(ys[win.start - 1], Y[-1], s.tol_power)
                     break
                 # or the last windows fluctuate about a steady state (rollers rattling where a narrow
                 # load zone ends): their mean, over the whole block, is then the steady state
@@ -646,6 +648,7 @@ class Integration:
                         self.problem.case.par.skew_clearance):
                     self.steady = True
                     self.averaged_windows = k
+                    self.failure = self.unbalanced_power(ys[len(ys) - 1 - k * s.samples], Y[-1], s.tol_power)
                     break
         self.t = np.array(ts)
         self.y = np.array(ys)
@@ -654,8 +657,33 @@ class Integration:
         # the sample at which the windows of the steady state's means begin (the state there and at
         # the end give their exact means, window_means)
         self.average_from = len(ts) - 1 - self.averaged_windows * s.samples
+        if self.failure is not None:
+            self.steady = False
         if self.steady:
             self._align(y, t, s)
+
+    def unbalanced_power(self, y_from, y_to, tol):
+        """Why the windows from state y_from to y_to, whose means settled, are no steady state, or
+        None: at a steady state the drive's work goes into friction, contact damping and the pocket
+        (quadrature states); the kinetic and the contacts' elastic energy return to themselves with
+        the roller passes. Their balance must close within ``tol`` of the drive's work
+        (solver.dynamic.steady_tolerance_power). It did not where the means settled while energy
+        still went elsewhere: into a cage too heavy to move within the run (cage_inertia 1e3 kg m^2:
+        4 % of the drive, the cage speed unchanged at 8e-9 per window), or out of the contacts, whose
+        elastic forces did net work over the windows (tsrb_pinion_long at 5 / 4 kN, 5500 rpm: rollers
+        sliding 1-6.7 mm along their axes around the orbit, the contacts delivering 53 % of the drive's
+        power; session 33's checker D)."""
+        o_q = self.Z * NS + NRING + NCAGE
+        d = np.asarray(y_to)[o_q:o_q + NE] - np.asarray(y_from)[o_q:o_q + NE]
+        drive = d[E_IN]
+        lost = d[E_DISS:E_DISS + NC].sum() + d[E_DAMP] + d[E_POCKET]
+        if abs(drive - lost) <= tol * abs(drive):
+            return None
+        return (f"no steady state: the window means settled, but the drive's work {drive:.6g} N mm and the work "
+                f"dissipated {lost:.6g} N mm (friction, contact damping, pocket) differ by "
+                f"{(lost - drive) / abs(drive):+.2%} (solver.dynamic.steady_tolerance_power = {tol:g}); the "
+                f"contacts' elastic forces did {-d[E_ELASTIC]:.6g} N mm of net work, the rest went into kinetic "
+                f"energy")
 
     def _align(self, y, t, s):
         """The steady state at the instant the rollers pass the azimuths 2 pi j / Z of the
