@@ -638,7 +638,6 @@ class Integration:
                 if (d_speed < s.tol_speed and d_torque < s.tol_torque and d_load < s.tol_load
                         and d_skew < s.tol_skew):
                     self.steady = True
-                    self.failure = self.unbalanced_power(ys[win.start - 1], Y[-1], s.tol_power)
                     break
                 # or the last windows fluctuate about a steady state (rollers rattling where a narrow
                 # load zone ends): their mean, over the whole block, is then the steady state
@@ -648,7 +647,6 @@ class Integration:
                         self.problem.case.par.skew_clearance):
                     self.steady = True
                     self.averaged_windows = k
-                    self.failure = self.unbalanced_power(ys[len(ys) - 1 - k * s.samples], Y[-1], s.tol_power)
                     break
         self.t = np.array(ts)
         self.y = np.array(ys)
@@ -657,8 +655,9 @@ class Integration:
         # the sample at which the windows of the steady state's means begin (the state there and at
         # the end give their exact means, window_means)
         self.average_from = len(ts) - 1 - self.averaged_windows * s.samples
-        if self.failure is not None:
-            self.steady = False
+        if self.steady:     # settled means: a steady state only if their windows' power balance closes
+            self.failure = self.unbalanced_power(self.y[self.average_from], self.y[-1], s.tol_power)
+            self.steady = self.failure is None
         if self.steady:
             self._align(y, t, s)
 
@@ -669,7 +668,7 @@ class Integration:
         the roller passes. Their balance must close within ``tol`` of the drive's work
         (solver.dynamic.steady_tolerance_power). It did not where the means settled while energy
         still went elsewhere: into a cage too heavy to move within the run (cage_inertia 1e3 kg m^2:
-        4 % of the drive, the cage speed unchanged at 8e-9 per window), or out of the contacts, whose
+        3.6 % of the drive's work, the cage speed unchanged at 8e-9 per window), or out of the contacts, whose
         elastic forces did net work over the windows (tsrb_pinion_long at 5 / 4 kN, 5500 rpm: rollers
         sliding 1-6.7 mm along their axes around the orbit, the contacts delivering 53 % of the drive's
         power; session 33's checker D)."""

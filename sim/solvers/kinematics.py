@@ -1416,7 +1416,7 @@ def free_roller_speeds(wi, wR, psi, free, case, settings, totals, loads, jac):
                         wc_new = wc + max(-limit, min(limit, wc_new - wc))
                         probes += 1
                 elif slope >= 0.0:
-                    probes += 1
+                    probes += 1     # a probe step, doubling as CAGE_PROBE_STEP says (it only doubled where clamped)
                 F_prev = F
                 dF_pred = slope * (wc_new - wc)
                 wc_prev = wc
