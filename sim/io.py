@@ -362,7 +362,7 @@ SERIES_VARIABLES = {
     "pocket_force_t": (("roller",), "N", "cage pocket force on the roller along the rolling direction e_t"),
     "cage_speed_t": ((), "rpm", "cage speed over time"),
     "ring_displacement_t": (("direction",), "mm", "inner-ring displacement over time (axial, radial along Fr, lateral along y = z x Fr)"),
-    "torque_t": ((), "N*mm", "frictional torque on the outer ring over time"),
+    "torque_t": ((), "N*mm", "torque on the outer ring over time (the bearing's friction torque is the drive's, drive_torque_t; they differ by the contacts' orbit moments, sim.solvers.dynamic)"),
     "drive_torque_t": ((), "N*mm", "torque that drives the inner ring at its speed over time"),
     "torque_component_t": (("component",), "N*mm", "loss power by mechanism / inner-ring speed over time"),
     "power_loss_t": ((), "W", "frictional power loss over time"),

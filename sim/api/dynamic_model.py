@@ -256,7 +256,10 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
     i0 = integ.average_from
     means = window_means(y[i0], y[-1], integ.t[-1] - integ.t[i0], Z)
     power = means.power
-    torque = means.torque
+    # the drive's torque (power loss / speed at the steady state): the outer ring's differs from it by
+    # the contacts' orbit moments (sim.solvers.dynamic.rhs, Q_phi), whose sum over the rollers is the
+    # moment of the ring loads about the bearing axis where the ring is displaced across the load
+    torque = means.drive_torque
     # film outputs at the aligned state (its film: Integration._align leaves the problem there)
     srr, film_um, lam = film_outputs(dcase.problem.case, integ.rol_aligned[:, RO_QO] + integ.rol_aligned[:, RO_QI],
                                      float(yl[o_cage + 1]), integ.rol_aligned[:, RO_WR], body.wi)

@@ -44,6 +44,21 @@ Loads (every formula is a physics kernel; this module only assembles them):
   damping: stiffness-proportional (Rayleigh) damping on the contact's own exact tangent
   stiffness K, f_d = -beta K dy/dt in the contact chart y = (a, b, theta, delta_a, delta_r),
   a damping ratio zeta = beta omega / 2 at a contact frequency omega (``body.beta``, config);
+  delta_r = delta_x cos(phi) + delta_y sin(phi) depends on the roller's orbit angle wherever the
+  ring is displaced across its meridian plane (e_perp = -delta_x sin(phi) + delta_y cos(phi)), so
+  the contact has a generalized force on phi, Q_phi = (f_r + f_d,r) e_perp [N mm] (f_r the radial
+  force of the roller's contacts on the ring), the orbit's tangential force Q_phi / r, and
+  d delta_r / dt holds e_perp phi' (the inner raceway's normals meet the ring's own axis, not the
+  bearing's: turned by e_perp / r out of the meridian plane). The ring takes f_r along e_r as
+  before: the contact energy, a function of (delta_a, delta_r(phi, delta_x, delta_y)) and the
+  roller's pose, is invariant under a common turn of ring and rollers about z, so energy and
+  angular momentum about z are conserved (tests/dynamic/test_ladder.py). The drive's torque is
+  then the bearing's friction torque (power loss / speed at a steady state); the outer ring's
+  differs from it by the orbit moments' mean sum, the power the contacts' normal forces put into
+  the rollers' motion in their meridian planes (sliding along the axis and tilting as they cross
+  a load zone, against the lateral tractions) per unit orbit angle: 0 where every roller keeps its
+  pose (a pure axial load), most of the drive's torque for tsrb_pinion_long at 5 / 4 kN, 6340 rpm,
+  whose rollers slide 1-7 mm along their axes around the orbit;
 - raceway and rib traction, rolling resistance and drag: :func:`sim.physics.friction.roller_traction`
   with the roller's own orbit speed phi'_j in place of the cage speed and its own spin and skew
   (2-D slip per slice with skew), :func:`sim.physics.friction.roller_drag`; the film (thickness,
@@ -114,7 +129,7 @@ NSH = NRING + NCAGE + NE
 RO_QO, RO_QI, RO_QRIB, RO_FP, RO_WR = range(5)
 NRO = 5
 # Bearing outputs of :func:`rhs` (``tot``): torque on the outer ring [N mm], drive torque of the
-# inner ring [N mm], then the loss powers of sim.physics.friction.COMPONENTS [N mm/s], then the
+# inner ring [N mm] (the friction torque: module docstring, "Loads"), then the loss powers of sim.physics.friction.COMPONENTS [N mm/s], then the
 # damping power (contacts and pocket) [N mm/s], then the power of the lateral tractions on the
 # lateral slip of the skewed rollers (EV_PSKEW, a part of the sliding power) [N mm/s].
 TO_TOUT, TO_TIN = 0, 1
@@ -286,7 +301,10 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
         ydot[1] = rdot * vr + zdot * vz
         ydot[2] = theta_dot
         ydot[3] = va
-        ydot[4] = vx * cph + vy * sph
+        # delta_r = delta_x cos(phi) + delta_y sin(phi) changes with the ring's velocity and with the
+        # roller's orbit: d delta_r / d phi = e_perp, the ring's displacement across the meridian plane
+        e_perp = -dxr * sph + dyr * cph
+        ydot[4] = vx * cph + vy * sph + e_perp * wphi
         P_el = 0.0
         P_damp = 0.0
         for a in range(NY):
@@ -298,7 +316,14 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
             P_damp -= fd[a] * ydot[a]
         Fr_ = (f[0] + fd[0]) * ur + (f[1] + fd[1]) * vr
         Fz_ = (f[0] + fd[0]) * uz + (f[1] + fd[1]) * vz
-        Ft_ = 0.0
+        # the contact's generalized force on the orbit angle: its energy depends on phi through
+        # delta_r, Q_phi = f_r e_perp [N mm] (f_r = f[4], the radial force of the contacts on the ring),
+        # the orbit's force Q_phi / r along e_t. Geometrically: the inner raceway's normals pass
+        # through the ring's own axis, turned by e_perp / r from the meridian plane. Without it the
+        # contacts did net work on the orbit where the ring is displaced across the meridian plane
+        # (tsrb_pinion_long at 5 / 4 kN, 6340 rpm, dx 0.107 mm, dy 0.22 mm: 3.05e5 N mm/s against the
+        # contacts' net -2.87e5 N mm/s, a false steady state, session 33)
+        Ft_ = (f[4] + fd[4]) * e_perp / r
         # moment about the centre, components (e_r, e_t, e_z): the contact moment f_theta conjugate
         # to the tilt, whose rate is theta' = Omega . w'' / cos(psi), is f_theta w'' / cos(psi)
         # (w'' = u'' x v', -e_t without skew; its power f_theta theta' is the elastic energy's).
@@ -345,7 +370,19 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
                                 vx * cph + vy * sph, -vx * sph + vy * cph, va)
             roller_traction(j, wR, psi, rates, wphi, body.wi, case, ev)
             FD = roller_drag(wphi, r, par, ev)
+            M_spin = ev[EV_MU]
             Fpf = pocket_friction(Fp, wR, par, case.bearing.rho_m, ev)
+            # the pocket friction's moment on the roller about u'' (its force along v' at the pocket contact,
+            # a distance rho_m along e_t from the axis) reacts on the cage: its z-component M_pf u''_z (the
+            # roller's spin has a z-component). Its pair's power is -M_pf times the spin relative to the
+            # pocket, omega_R + (phi' - omega_c) u''_z: the first term the cage loss (pocket_friction), the
+            # second the pocket's work on the orbit relative to the cage. Without the cage's share (until
+            # session 34) the cage loss was counted at the relative spin while the moment acted on the
+            # absolute one: the fast pinion_alpha at 7.16 / 6.41 kN, 3910 rpm left 0.83 % of the drive's
+            # work unbalanced, 0.08 % with the pocket friction off
+            M_pf = ev[EV_MU] - M_spin
+            Tcage -= M_pf * A[0, 2]
+            P_pocket -= M_pf * A[0, 2] * (wphi - wc)
             Ft_ += ev[EV_FT] - FD
             Fr_ += ev[EV_FU] * ur + (ev[EV_FV] + Fpf) * vr
             Fz_ += ev[EV_FU] * uz + (ev[EV_FV] + Fpf) * vz
@@ -501,7 +538,7 @@ def jacobian(y, f0, rows0, problem, work, scale, J, rol, tot):
 # [s] (the first steady-state window) and window_angle [rad] (the cage's turn of every window:
 # whole roller passes), samples per window, max_windows (time cap),
 # tol_speed, tol_torque, tol_load, tol_skew: relative changes of the window means of cage speed,
-# outer-ring torque and roller loads, and of the skews over the pocket's skew clearance, below
+# drive torque and roller loads, and of the skews over the pocket's skew clearance, below
 # which two consecutive windows count as steady, fluctuation_windows (the block of windows whose
 # means may instead fluctuate about a steady state, fluctuates_about_a_steady_state), scale (state
 # vector: finite-difference step floors, sim.api.dynamic_model), tol_power (the steady windows' power
@@ -620,7 +657,7 @@ class Integration:
             # at 1.05 / 1.15 kN)
             if exact.cage_speed > 0.0:
                 duration = s.window_angle / exact.cage_speed
-            means = (exact.cage_speed, exact.torque,
+            means = (exact.cage_speed, exact.drive_torque,
                      np.sort(R[:, :, RO_QO:RO_QRIB + 1].mean(axis=0), axis=0),
                      np.sort(Y[:, PSI:self.Z * NS:NS].mean(axis=0)))
             history.append(means)
