@@ -57,8 +57,9 @@ Loads (every formula is a physics kernel; this module only assembles them):
   differs from it by the orbit moments' mean sum, the power the contacts' normal forces put into
   the rollers' motion in their meridian planes (sliding along the axis and tilting as they cross
   a load zone, against the lateral tractions) per unit orbit angle: 0 where every roller keeps its
-  pose (a pure axial load), most of the drive's torque for tsrb_pinion_long at 5 / 4 kN, 6340 rpm,
-  whose rollers slide 1-7 mm along their axes around the orbit;
+  pose (a pure axial load), more than the drive's torque itself for tsrb_pinion_long at 5 / 4 kN,
+  6340 rpm (outer ring -324 against the drive's 2426 N mm over windows that do not settle), whose
+  rollers slide 1-7 mm along their axes around the orbit;
 - raceway and rib traction, rolling resistance and drag: :func:`sim.physics.friction.roller_traction`
   with the roller's own orbit speed phi'_j in place of the cage speed and its own spin and skew
   (2-D slip per slice with skew), :func:`sim.physics.friction.roller_drag`; the film (thickness,
