@@ -257,8 +257,7 @@ def outputs(model, op, dcase, integ, wall_time, output_cfg):
     means = window_means(y[i0], y[-1], integ.t[-1] - integ.t[i0], Z)
     power = means.power
     # the drive's torque (power loss / speed at the steady state): the outer ring's differs from it by
-    # the contacts' orbit moments (sim.solvers.dynamic.rhs, Q_phi), whose sum over the rollers is the
-    # moment of the ring loads about the bearing axis where the ring is displaced across the load
+    # the mean sum of the contacts' orbit moments (sim.solvers.dynamic, "Loads": Q_phi)
     torque = means.drive_torque
     # film outputs at the aligned state (its film: Integration._align leaves the problem there)
     srr, film_um, lam = film_outputs(dcase.problem.case, integ.rol_aligned[:, RO_QO] + integ.rol_aligned[:, RO_QI],

@@ -130,8 +130,8 @@ NSH = NRING + NCAGE + NE
 RO_QO, RO_QI, RO_QRIB, RO_FP, RO_WR = range(5)
 NRO = 5
 # Bearing outputs of :func:`rhs` (``tot``): torque on the outer ring [N mm], drive torque of the
-# inner ring [N mm] (the friction torque: module docstring, "Loads"), then the loss powers of sim.physics.friction.COMPONENTS [N mm/s], then the
-# damping power (contacts and pocket) [N mm/s], then the power of the lateral tractions on the
+# inner ring [N mm] (the friction torque: module docstring, "Loads"), then the loss powers of
+# sim.physics.friction.COMPONENTS [N mm/s], then the damping power (contacts and pocket) [N mm/s], then the power of the lateral tractions on the
 # lateral slip of the skewed rollers (EV_PSKEW, a part of the sliding power) [N mm/s].
 TO_TOUT, TO_TIN = 0, 1
 TO_P0 = 2
@@ -710,16 +710,13 @@ class Integration:
         elastic forces did net work over the windows (tsrb_pinion_long at 5 / 4 kN, 5500 rpm: rollers
         sliding 1-6.7 mm along their axes around the orbit, the contacts delivering 53 % of the drive's
         power; session 33's checker D)."""
-        o_q = self.Z * NS + NRING + NCAGE
-        d = np.asarray(y_to)[o_q:o_q + NE] - np.asarray(y_from)[o_q:o_q + NE]
-        drive = d[E_IN]
-        lost = d[E_DISS:E_DISS + NC].sum() + d[E_DAMP] + d[E_POCKET]
+        drive, lost, elastic = window_work(y_from, y_to, self.Z)
         if abs(drive - lost) <= tol * abs(drive):
             return None
         return (f"no steady state: the window means settled, but the drive's work {drive:.6g} N mm and the work "
                 f"dissipated {lost:.6g} N mm (friction, contact damping, pocket) differ by "
                 f"{(lost - drive) / abs(drive):+.2%} (solver.dynamic.steady_tolerance_power = {tol:g}); the "
-                f"contacts' elastic forces did {-d[E_ELASTIC]:.6g} N mm of net work, the rest went into kinetic "
+                f"contacts' elastic forces did {elastic:.6g} N mm of net work, the rest went into kinetic "
                 f"energy")
 
     def _align(self, y, t, s):
@@ -782,6 +779,15 @@ def fluctuates_about_a_steady_state(block, tolerances, skew_clearance):
 # (:func:`window_means`): cage speed [rad/s], outer-ring and drive torques [N mm], loss power of
 # each mechanism (NC,) [N mm/s], contact and pocket damping power and lateral-slip power [N mm/s].
 WindowMeans = namedtuple("WindowMeans", ["cage_speed", "torque", "drive_torque", "power", "damping", "skew_power"])
+
+
+def window_work(y_start, y_end, Z):
+    """Work from state y_start to y_end (Z rollers; quadrature states) [N mm]: the drive's and the
+    external loads' (E_IN), the work dissipated (friction, contact damping, pocket) and the net work of
+    the contacts' elastic forces."""
+    o_q = Z * NS + NRING + NCAGE
+    d = np.asarray(y_end)[o_q:o_q + NE] - np.asarray(y_start)[o_q:o_q + NE]
+    return float(d[E_IN]), float(d[E_DISS:E_DISS + NC].sum() + d[E_DAMP] + d[E_POCKET]), float(-d[E_ELASTIC])
 
 
 def window_means(y_start, y_end, duration, Z):
