@@ -120,7 +120,8 @@ def prepare(model, friction, op, dyn):
     # the run updates frames, line loads and rib data in place: its own copies
     frames = type(case.frames)(*(np.array(x, copy=True) for x in case.frames))
     bearing = case.bearing._replace(q=case.bearing.q.copy(), Qrib=case.bearing.Qrib.copy(),
-                                    nrib=case.bearing.nrib.copy(), free=case.bearing.free.copy())
+                                    nrib=case.bearing.nrib.copy(), free=case.bearing.free.copy(),
+                                    ring=case.bearing.ring.copy())
     case = case._replace(frames=frames, bearing=bearing)
     problem = DynamicProblem(model.bearing, model.elasticity, case, body)
     # contact damping: ratio zeta at the roller's normal contact frequency sqrt(k / m), k the

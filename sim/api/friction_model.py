@@ -10,8 +10,9 @@ import numpy as np
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
 from sim.physics.contact import hertz_point_radii
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, FL_RING_R, FL_RING_T, FL_RING_Z, FL_U,
-                                  FL_W, NC, NEV, NFL, ContactLoads, FilmState, FrictionCase, FrictionParams, lubrication_state,
+from sim.physics.friction import (TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, EV_TRING, EV_TZ, FL_RING_R, FL_RING_T,
+                                  FL_RING_Z, FL_U, FL_W, NC, NEV, NFL, NRP, RP_COS, RP_DA, RP_DR, RP_SIN, ContactLoads,
+                                  FilmState, FrictionCase, FrictionParams, lubrication_state, ring_surface_speed,
                                   roller_friction, width_quadrature)
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
 from sim.physics.lubricant import MPA_S_PER_PA_S
@@ -188,7 +189,8 @@ class FrictionModel:
         bearing = ContactLoads(q=raw["line_load"], Qrib=raw["Q_rib"], R_eq=a["R_eq"], w=float(g.slice_width),
                                 E_star=float(self.E_star), rib_end=self.rib_end,
                                 nrib=np.ascontiguousarray(raw["rib_contact"][:, 2:4]), rho_m=0.5 * g.Dwe,
-                                free=raw["free"], end_drop=self.end_drop)
+                                free=raw["free"], end_drop=self.end_drop,
+                                ring=inner_ring_poses(Z, raw["ring"], float(np.radians(op.tilt_deg))))
         wc = float(angular_speed(cage_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha)))
         wR = np.full(Z, float(angular_speed(roller_speed_rolling(speed, 0.0, g.Dwe, g.Dpw, g.alpha))))
         psi = np.zeros(Z)               # roller skews [rad] (stay 0 without friction.skew)
@@ -322,7 +324,7 @@ class FrictionModel:
             # at the rate -sum(M omega_R), which the inner ring puts back in the load zone: the torque is
             # the outer ring's plus that rate over the speed (with held rollers, the power loss over the
             # speed); free rollers hold no spin (their spin inertia is solved: the outer ring's torque)
-            torque = float(totals[EV_TOUT])
+            torque = drive_torque(totals)
             if not free:
                 torque -= held_spin_power(settings, wR, psi, wc, wi, case) / wi
             components = torque * power / power.sum()
@@ -372,6 +374,32 @@ def held_spin_power(settings, wR, psi, wc, wi, case):
     return rate
 
 
+def drive_torque(totals):
+    """The drive's torque [N mm] from the rollers' summed kernel evaluations ``totals`` (NEV,) at a
+    traction balance: the outer ring's, plus the inner contacts' moment about the inner ring's own
+    axis less theirs about the bearing axis (sim.physics.friction, "Inner ring"; equal where the ring
+    is centred and untilted). Times omega_i it is the power the drive puts in, the power loss at the
+    balance (module docstring of sim.physics.friction)."""
+    return float(totals[EV_TOUT] + totals[EV_TRING] - (totals[EV_TZ] + totals[EV_TOUT]))
+
+
+def inner_ring_poses(Z, ring, tilt):
+    """The inner ring's pose in the meridian plane of each roller (Z, NRP), layout RP_* of
+    sim.physics.friction (module docstring, "Inner ring"), for the quasi-static solution: ring (delta_a,
+    delta_x, delta_y) [mm] (raw["ring"]), imposed tilt [rad] about the y axis; roller j at psi_j =
+    2 pi j / Z (sim.solvers.symmetry). Its radial displacement delta_x cos(psi) + delta_y sin(psi) and
+    turn tilt cos(psi) there, as the load distribution's contact geometry
+    (sim.solvers.quasi_static.solve_bearing); no offset across the plane (e_perp 0: the quasi-static
+    solution leaves out its lateral slip, sim.physics.friction, "Inner ring")."""
+    psi = 2.0 * np.pi * np.arange(Z) / Z
+    poses = np.zeros((Z, NRP))
+    poses[:, RP_DR] = ring[1] * np.cos(psi) + ring[2] * np.sin(psi)
+    poses[:, RP_DA] = ring[0]
+    poses[:, RP_COS] = np.cos(tilt * np.cos(psi))
+    poses[:, RP_SIN] = np.sin(tilt * np.cos(psi))
+    return poses
+
+
 def film_outputs(case, load, wc, wR, wi):
     """Slide-to-roll ratio (2.25) [1] and film thickness [um] along the most loaded roller (race,
     slice; NaN where unloaded) and the specific film thickness at its most loaded slices (race,)
@@ -384,9 +412,10 @@ def film_outputs(case, load, wc, wR, wi):
     v_roll = np.zeros((2, n))
     v_ring = np.zeros((2, n))
     for s in range(2):
-        Om = -wc if s == 0 else wi - wc
         v_roll[s] = wR[j] * (Ax[j, 1] * (X[j, s, :, 0] - Cen[j, 0]) - Ax[j, 0] * (X[j, s, :, 1] - Cen[j, 1]))
-        v_ring[s] = Om * X[j, s, :, 0]
+        for k in range(n):     # the ring's surface about its own axis (sim.physics.friction, "Inner ring")
+            v_ring[s, k] = ring_surface_speed(wi if s == 1 else 0.0, wc, case.bearing.ring[j], X[j, s, k, 0],
+                                              X[j, s, k, 1])
     loaded = film.p0[j] > 0.0
     srr = np.where(loaded, 2.0 * (v_roll - v_ring) / (v_roll + v_ring), np.nan)   # eq. (2.25)
     film_um = np.where(loaded, film.h[j] * UM_PER_MM, np.nan)

@@ -122,8 +122,12 @@ def to_ring(qr, qz, ring_dr, ring_dz, ring_phi):
     """A meridian point in world (r, z) -> the ring's coordinates [mm]: Rot(-phi) (q - translation),
     the ring displaced by (ring_dr, ring_dz) [mm] and turned by ring_phi [rad] (world = Rot(phi) ring
     + translation)."""
-    cp = np.cos(ring_phi)
-    sp = np.sin(ring_phi)
+    return to_ring_turned(qr, qz, ring_dr, ring_dz, np.cos(ring_phi), np.sin(ring_phi))
+
+
+@internal_kernel
+def to_ring_turned(qr, qz, ring_dr, ring_dz, cp, sp):
+    """:func:`to_ring` with the cosine and sine of ring_phi given (a direction: ring_dr = ring_dz = 0)."""
     tr = qr - ring_dr
     tz = qz - ring_dz
     return cp * tr + sp * tz, -sp * tr + cp * tz

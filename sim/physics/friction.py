@@ -1,14 +1,15 @@
 """Roller kinematics from the traction balance, and the frictional torque (MODEL.md 5, thesis 5.4).
 
 Frame: the cage frame, rotating with the cage at omega_c about the bearing axis z; the outer
-ring turns at -omega_c, the inner ring at omega_i - omega_c, roller j about its own axis u'
-at omega_R,j. Local basis at a roller's azimuth: (e_r, e_t, e_z), right-handed, meridian
+ring turns at -omega_c, the inner ring at omega_i about its own axis less omega_c about z ("Inner
+ring" below), roller j about its own axis u' at omega_R,j. Local basis at a roller's azimuth: (e_r, e_t, e_z), right-handed, meridian
 coordinates (r, z) as in :mod:`sim.geometry`.
 
 Per slice and raceway (kernel :func:`roller_friction`), at the contact point X with normal
 n (into the ring) and rolling tangent a = n x e_t:
 
-- sliding speed of the roller against the ring along e_t, s = omega_R (u' x (X - c)).e_t - Omega X_r,
+- sliding speed of the roller against the ring along e_t, s = omega_R (u' x (X - c)).e_t - Omega X_r
+  (Omega = -omega_c on the outer ring; on the inner ring omega_i r' - omega_c X_r, "Inner ring"),
   and across the contact width y (along e_t) the spin omega_s = (omega_R u' - Omega e_z).n adds
   y omega_s along a; the traction -tau v/|v| of (5.17) is integrated over the Hertz width
   (y = b sin(t), Gauss-Legendre in t) giving the force F_t along e_t and the spin moment M_n
@@ -141,6 +142,32 @@ along e_t at X_r f psi', so u = 1/2 |v1 + v2 + psi' (x - 2 X_r f)|. The film its
 load share, thermal viscosity, lubrication_state) stays that of the spins, refreshed per window; the
 lateral slip of the rates does not enter the shear heating.
 
+Inner ring (ContactLoads.ring, layout RP_*). The inner ring spins at omega_i about its own axis,
+which the load displaces from the bearing axis: at a roller's azimuth by delta_r along e_r,
+delta_a along e_z and e_perp along e_t, and turns by phi in the meridian plane (the imposed tilt's
+component there, tilt cos(psi); sim.physics.contact.to_ring gives a point's ring coordinates). Its
+surface at a contact point X moves with the rigid-body velocity omega_i n_i x (X - C) (n_i its
+axis, C its centre), which in the roller's meridian frame, first order in the displacement, is
+omega_i r' along e_t (r' the point's distance from the ring's own axis in the plane, from to_ring)
+plus omega_i e_perp along e_r; its angular velocity omega_i n_i has the components omega_i n'_z,
+omega_i a'_z about the normal n and the tangent a (n', a' in the ring's coordinates). Before
+session 35 the kernels took the ring's surface about the bearing axis, omega_i X_r, an error of
+omega_i delta_r: the quasi-static torque moved by 4e-6 to 3e-3 on ordinary combined and tilted
+cases (TRB 32208, 31313, reference, prototype and pinion TSRBs; README), by +19 % for
+tsrb_pinion_long at 5 / 4 kN, 6340 rpm, whose ring the load displaces by 0.73 mm radially. The e_perp part moves the surface along the generatrix a: a lateral slip -omega_i
+e_perp a_r (the raceway's circumferential direction turned by e_perp / r against the roller's
+rolling direction; the rib likewise along b). The moment of a roller's inner contacts about the
+ring's own axis (EV_TRING: F_t r', the couples' components along n_i, e_perp times the lateral
+force's radial component) times omega_i is the power the ring's spin puts into them: with the
+slips above, -omega_R EV_MU + omega_i EV_TRING - omega_c EV_TZ is the roller's dissipated power
+exactly (tests/friction/test_inner_ring_axis.py), so the drive's torque is EV_TRING summed, which
+both solvers report. What the quasi-static solution leaves out (its ContactLoads.ring has e_perp
+0): the e_perp lateral slip, odd in the azimuth where the ring moves along the load (it would break
+the mirror symmetry of its roller classes, sim.solvers.symmetry, and it comes with the rollers'
+orbit rates, which that solution has not either), and the imposed tilt's component across the
+meridian plane (tilt sin(psi), the same kind of lateral slip); the dynamic solver, whose ring
+translates but does not tilt, has the e_perp slip.
+
 Unknowns: omega_R,j (roller moment about u' = 0, per roller), with skew psi_j (moment about
 v' = 0, per roller), and omega_c (cage moment about z = 0: sum over rollers of the z-moments the
 contacts exert). At that equilibrium the torque the
@@ -154,7 +181,7 @@ import numpy as np
 
 from sim._math.jit import internal_kernel, kernel
 from sim._math.roots import root_search, root_search_step
-from sim.physics.contact import hertz_line_half_width, hertz_line_pressure
+from sim.physics.contact import hertz_line_half_width, hertz_line_pressure, to_ring_turned
 from sim.physics.ehl import (film_line, film_point, film_temperature_rise, film_traction_eyring, film_traction_maxwell,
                              flash_temperature_rise, pressure_term, rolling_force_hysteresis,
                              rolling_moment_hydrodynamic, solid_load_share, thermal_loading, film_thermal_factor_gupta,
@@ -182,7 +209,11 @@ EV_PSKEW = EV_MS + 4
 # e_z of the roller's meridian frame [N] (the reaction of their tractions on the roller, module
 # docstring "Rates")
 EV_RING_R, EV_RING_T, EV_RING_Z = EV_PSKEW + 1, EV_PSKEW + 2, EV_PSKEW + 3
-NEV = EV_RING_Z + 1
+# then the moment of the inner-ring raceway and rib contacts on the roller about the inner ring's own
+# axis [N mm] (module docstring, "Inner ring"): times omega_i, the power the inner ring's spin puts into
+# the roller's contacts (the drive's share of this roller)
+EV_TRING = EV_RING_Z + 1
+NEV = EV_TRING + 1
 # FRICTION_LOADS, friction loads of a roller's contacts in the quasi-static balance (:func:`friction_loads`): on the
 # roller along u', v' [N] and about u' x v' [N mm] (BearingModel.solve's roller_loads), then on the
 # inner ring along e_r, e_t, e_z of the roller's frame [N] (its ring_loads)
@@ -281,7 +312,14 @@ ContactLoads = namedtuple("ContactLoads", [
     "rho_m",        # radius of the roller surface in the cage pocket, Dwe/2 [mm]
     "free",         # (Z, 2, N) free penetrations of the slices [mm] (sim.physics.elasticity.coupled_slice_loads)
     "end_drop",     # (2, 2, M) the end-profile table of the contact ends (sim.physics.roller_contact.BearingArrays)
+    "ring",         # (Z, NRP) the inner ring's pose in each roller's meridian plane (layout RP_*, module
+                    # docstring "Inner ring"): the ring's axis about which it spins
 ])
+# Pose of the inner ring in a roller's meridian plane (ContactLoads.ring): its radial and axial
+# displacement [mm] (sim.physics.contact.to_ring's translation), the cosine and sine of its turn in the
+# plane (to_ring's ring_phi), and the offset of its axis across the plane, along e_t [mm]
+RP_DR, RP_DA, RP_COS, RP_SIN, RP_PERP = range(5)
+NRP = 5
 
 # Film, load share, rolling resistance, Hertz data and film viscosity of every contact, written by
 # :func:`lubrication_state` and fixed while the kinematics are solved (0 where unloaded; Fh also on
@@ -339,20 +377,45 @@ FILM_TEMPERATURE_MAX_STEPS = np.int64(100)
 
 
 @internal_kernel
-def _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz):
-    """Speeds along e_t of the roller surface and of the ring surface at (Xr, Xz) [mm/s].
+def _roller_surface_speed(wR, Xr, Xz, cr, cz, ur, uz):
+    """Speed along e_t of the roller surface at (Xr, Xz) [mm/s]: wR its speed about its axis
+    (ur, uz) through the centre (cr, cz) [rad/s]; lengths [mm]."""
+    return wR * (uz * (Xr - cr) - ur * (Xz - cz))
 
-    wR: roller speed about its axis (ur, uz) through the centre (cr, cz); Om: ring speed in
-    the cage frame [rad/s]; lengths [mm].
-    """
-    return wR * (uz * (Xr - cr) - ur * (Xz - cz)), Om * Xr
+
+@kernel
+def ring_surface_speed(wi_s, wc, ring, Xr, Xz):
+    """Speed along e_t of a ring's surface at the meridian point (Xr, Xz) in the cage frame [mm/s]:
+    the ring spins at wi_s [rad/s] about its own axis (0 for the outer ring, omega_i for the inner),
+    at the distance r' of the point from that axis, and the cage frame turns at wc [rad/s] about the
+    bearing axis; ``ring`` (NRP,): the inner ring's pose (module docstring, "Inner ring")."""
+    r_own = to_ring_turned(Xr, Xz, ring[RP_DR], ring[RP_DA], ring[RP_COS], ring[RP_SIN])[0]
+    return wi_s * r_own - wc * Xr
+
+
+@internal_kernel
+def _ring_motion(s, wi, wc, ring, Xr, Xz, nr, nz):
+    """Motion of ring s (0 outer, fixed; 1 inner, spinning at wi [rad/s] about its own axis, pose
+    ``ring``) at a contact point X with normal n (into the ring), in the cage frame (turning at wc
+    about the bearing axis; module docstring, "Inner ring"): its surface speed along e_t [mm/s], its
+    angular velocity about n and about a = n x e_t = (-n_z, n_r) [rad/s], and, for the moment about
+    the ring's axis, the point's distance r' from that axis [mm] and the axial components of n and a
+    in the ring's coordinates [1] (the outer ring's: X_r, n_z, n_r)."""
+    if s == 0:
+        return -wc * Xr, -wc * nz, -wc * nr, Xr, nz, nr
+    c = ring[RP_COS]
+    sn = ring[RP_SIN]
+    r_own = to_ring_turned(Xr, Xz, ring[RP_DR], ring[RP_DA], c, sn)[0]
+    nz_own = to_ring_turned(nr, nz, 0.0, 0.0, c, sn)[1]
+    az_own = to_ring_turned(-nz, nr, 0.0, 0.0, c, sn)[1]
+    return wi * r_own - wc * Xr, wi * nz_own - wc * nz, wi * az_own - wc * nr, r_own, nz_own, az_own
 
 
 @internal_kernel
 def outer_rolling_speed(j, wc, case):
     """Speed of roller j about its axis [rad/s] at which it rolls on the outer raceway without
     rigid slip at cage speed wc [rad/s] (the outer ring turning at -wc in the cage frame): the
-    sliding speed of :func:`_surface_speeds`, linear in omega_R, vanishes in the mean of its outer
+    sliding speed (:func:`_roller_surface_speed` less the ring's -wc X_r), linear in omega_R, vanishes in the mean of its outer
     slices weighted by their line loads (the held spin of a roller resting on the outer raceway,
     sim.solvers.kinematics). 0 for a roller without outer load."""
     X, Cen, Ax = case.frames.X, case.frames.Cen, case.frames.Ax
@@ -361,9 +424,9 @@ def outer_rolling_speed(j, wc, case):
     ring = 0.0
     for k in range(q.shape[2]):
         if q[j, 0, k] > 0.0:
-            v1, v2 = _surface_speeds(1.0, -wc, X[j, 0, k, 0], X[j, 0, k, 1], Cen[j, 0], Cen[j, 1], Ax[j, 0], Ax[j, 1])
-            roll += q[j, 0, k] * v1
-            ring += q[j, 0, k] * v2
+            roll += q[j, 0, k] * _roller_surface_speed(1.0, X[j, 0, k, 0], X[j, 0, k, 1], Cen[j, 0], Cen[j, 1],
+                                                       Ax[j, 0], Ax[j, 1])
+            ring -= q[j, 0, k] * wc * X[j, 0, k, 0]
     return ring / roll if roll != 0.0 else 0.0
 
 
@@ -535,8 +598,8 @@ def roller_lubrication(j, wR, wc, wi, case, scratch):
     cz = Cen[j, 1]
     ur = Ax[j, 0]
     uz = Ax[j, 1]
+    ring = brg.ring[j]
     for s in range(2):
-        Om = -wc if s == 0 else wi - wc
         eta0 = par.eta0 if s == 0 else par.eta0_inner    # the oil at this ring's temperature
         # EHL rolling force of the strips: per unit length at the contact's mean line load
         # (it hardly depends on the load: W^0.0126, rolling_force_hydrodynamic) over the
@@ -560,7 +623,10 @@ def roller_lubrication(j, wR, wc, wi, case, scratch):
             b[j, s, k] = 0.0
             if qk <= 0.0 and (lengths[k] <= 0.0 or par.boundary_only):
                 continue
-            v1, v2 = _surface_speeds(wR, Om, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
+            nr = Nrm[j, s, k, 0]
+            nz = Nrm[j, s, k, 1]
+            v2, om_n = _ring_motion(s, wi, wc, ring, X[j, s, k, 0], X[j, s, k, 1], nr, nz)[:2]
+            v1 = _roller_surface_speed(wR, X[j, s, k, 0], X[j, s, k, 1], cr, cz, ur, uz)
             u = 0.5 * abs(v1 + v2)
             R = R_eq[s, k]
             if lengths[k] > 0.0 and not par.boundary_only:
@@ -596,7 +662,7 @@ def roller_lubrication(j, wR, wc, wi, case, scratch):
             h[j, s, k] = hk
             Phi[j, s, k] = solid_load_share(hk, par.sigma, par.B_ZH, par.C_ZH)
             Fy[j, s, k] = rolling_force_hysteresis(qk, bk, R, w, par.hysteresis)
-            ws = wR * (ur * Nrm[j, s, k, 0] + uz * Nrm[j, s, k, 1]) - Om * Nrm[j, s, k, 1]
+            ws = wR * (ur * nr + uz * nz) - om_n
             npts = _width_points(p0[j, s, k], bk, par, quad, pts)
             theta = _viscosity_factor_at(HeatedContact(p0[j, s, k], bk, hk, Phi[j, s, k], ws, bk, v1, v2, eta0), par,
                                          quad, npts, pts)
@@ -609,7 +675,8 @@ def roller_lubrication(j, wR, wc, wi, case, scratch):
     film.prib[j] = 0.0
     film.Etarib[j] = 0.0
     if Qrib[j] > 0.0:
-        v1, v2 = _surface_speeds(wR, wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
+        v1 = _roller_surface_speed(wR, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
+        v2 = ring_surface_speed(wi, wc, ring, Xrib[j, 0], Xrib[j, 1])
         u = 0.5 * abs(v1 + v2)
         R_t = brg.rib_end[2]
         R_m = brg.rib_end[3]
@@ -820,8 +887,9 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
     vz = Ax[j, 3]
     n = p0.shape[2]
     psi_dot = rates.psi_dot
+    ring = case.bearing.ring[j]
+    e_perp = ring[RP_PERP]
     for s in range(2):
-        Om = -wc if s == 0 else wi - wc
         ring_t = rates.vi_t if s == 1 else 0.0      # inner ring's translation along e_t [mm/s]
         F_sum = 0.0     # sum of F_t over the contact [N]
         P_slip = 0.0    # -sum F_t s [N mm/s]
@@ -839,7 +907,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             hk = h[j, s, k]
             phik = Phi[j, s, k]
             eta = Eta[j, s, k]                                   # (len(quad.wq),) [MPa s]
-            v1, v2 = _surface_speeds(wR, Om, Xr, Xz, cr, cz, ur, uz)
+            v1 = _roller_surface_speed(wR, Xr, Xz, cr, cz, ur, uz)
+            v2, om_n, om_a, r_own, nz_own, az_own = _ring_motion(s, wi, wc, ring, Xr, Xz, nr, nz)
             dr = Xr - cr
             dz = Xz - cz
             x = ur * dr + uz * dz                                # (X - c).u' [mm]
@@ -851,9 +920,13 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             # rolling about a, the tilt rate (about w'' = -e_t) neither. All 0 at a steady state
             # and in the quasi-static solution.
             st_rate, sl_rate = rate_slip(rates, s == 1, dr, dz, ar, az, ur, uz)
+            if s == 1 and e_perp != 0.0:
+                # the inner ring's axis offset by e_perp across the meridian plane: its spin moves its
+                # surface along e_r at omega_i e_perp (module docstring, "Inner ring")
+                sl_rate -= wi * e_perp * ar
             st = v1 - v2 + st_rate
-            ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - Om * nz   # spin about n
-            wroll = wR * (ur * ar + uz * az) + psi_dot * (vr * ar + vz * az) - Om * az   # relative rolling about a
+            ws = wR * (ur * nr + uz * nz) + psi_dot * (vr * nr + vz * nz) - om_n     # spin about n
+            wroll = wR * (ur * ar + uz * az) + psi_dot * (vr * ar + vz * az) - om_a  # relative rolling about a
             # entrainment speed: the mean speed of the two surfaces along e_t relative to the contact
             # point (Reynolds' equation in the frame of a moving contact, whose Couette term carries
             # the surface speeds relative to it, as for a cam and follower), which lies at the azimuth
@@ -869,6 +942,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             t_transit = 2.0 * bk / max(0.5 * abs(ue), MIN_ENTRAINMENT_SPEED)   # [s]
             Ft = 0.0
             Mn = 0.0
+            Fl = 0.0
             if p0k <= 0.0:
                 pass        # an unloaded strip: rolling loss only (below)
             elif psi == 0.0 and sl_rate == 0.0:
@@ -892,7 +966,6 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
                 sl = psi * rate
                 if sl_rate != 0.0:
                     sl += sl_rate
-                Fl = 0.0
                 for i in range(wq.shape[0]):
                     ct = cos_t[i]
                     p = p0k * ct
@@ -947,6 +1020,9 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
                 ev[EV_TOUT] -= tz                                # reaction on the outer ring
             else:
                 ev[EV_RING_T] -= Ft                              # reaction on the inner ring
+                # the moment about the inner ring's own axis: F_t at r', the couples' components along
+                # that axis, and the lateral force's radial component at the axis's offset e_perp
+                ev[EV_TRING] += Ft * r_own + Mn * nz_own - sg * Mrr * az_own + e_perp * Fl * ar
             ev[EV_FT] += Ft
             ev[EV_DRILLING] -= Mn * ws                           # spin power
             prr = Mrr * sg * wroll                               # rolling-resistance power [N mm/s], >= 0
@@ -969,7 +1045,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         nz = case.bearing.nrib[j, 1]
         R_n, x_n = case.bearing.rib_end[0], case.bearing.rib_end[1]
         r_centre = Xrib[j, 0] - R_n * nr    # radius of the point where the normal meets the roller axis [mm]
-        v1, v2 = _surface_speeds(wR, wi - wc, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
+        v1 = _roller_surface_speed(wR, Xrib[j, 0], Xrib[j, 1], cr, cz, ur, uz)
+        v2, _, _, r_own = _ring_motion(1, wi, wc, ring, Xrib[j, 0], Xrib[j, 1], nr, nz)[:4]
         dr = Xrib[j, 0] - cr
         dz = Xrib[j, 1] - cz
         x = ur * dr + uz * dz
@@ -978,6 +1055,8 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         br = -nz
         bz = nr
         st_rate, sb = rate_slip(rates, True, dr, dz, br, bz, ur, uz)
+        if e_perp != 0.0:
+            sb -= wi * e_perp * br          # the ring's surface along e_r at omega_i e_perp, as the slices
         st = v1 - v2 + st_rate
         skew_slip = psi != 0.0
         if skew_slip:
@@ -1000,6 +1079,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
         ev[EV_MU] += F * (uz * dr - ur * dz)
         ev[EV_MS] += F * (ur * dr + uz * dz)
         ev[EV_TZ] += F * Xrib[j, 0]
+        ev[EV_TRING] += F * r_own
         ev[EV_FT] += F
         ev[EV_RIB] -= F * st
         ev[EV_RING_T] -= F
@@ -1012,6 +1092,7 @@ def roller_traction(j, wR, psi, rates, wc, wi, case, ev):
             ev[EV_MW] += Fb * (dr * bz - dz * br)
             ev[EV_RING_R] -= Fb * br
             ev[EV_RING_Z] -= Fb * bz
+            ev[EV_TRING] += e_perp * Fb * br
             ev[EV_RIB] -= Fb * sb
             if skew_slip:
                 # its moment about the skewed axis u' + psi e_t at the turned contact point (first

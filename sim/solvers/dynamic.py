@@ -75,7 +75,10 @@ Loads (every formula is a physics kernel; this module only assembles them):
   centre's velocity (r', z') in the meridian plane, their in-plane parts in the lateral slip of
   every slice and the rib (the normal parts, squeeze, are the contact damping's), and the inner
   ring's translation velocity in the slip of its raceway and rib contacts, whose tractions react
-  on the ring's translation (as the quasi-static ring balance takes that reaction);
+  on the ring's translation (as the quasi-static ring balance takes that reaction). The inner ring
+  spins about its own axis (friction module docstring, "Inner ring": its pose at each roller,
+  delta_r, delta_a and e_perp, in ContactLoads.ring); the drive's torque is its contacts' moment
+  about that axis (EV_TRING), whose product with omega_i is the drive's power;
 - cage pocket: circumferential penalty at the pitch radius, force -k (|g| - c/2) sign(g) beyond
   the half play c/2 plus a damper while in contact (never pulling), both set in smoothly over a
   transition depth (a roller resting on its pocket with a few hundredths of a newton sits there:
@@ -102,9 +105,9 @@ from tqdm import tqdm
 
 from sim._math.jit import kernel
 from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P0, EV_PSKEW, EV_RING_R, EV_RING_T,
-                                  EV_RING_Z, EV_TOUT, EV_TZ, NC, NEV, RollerRates, film_scratch, pocket_friction,
-                                  pocket_skew_couple, pocket_wall_force, roller_drag, roller_lubrication,
-                                  roller_traction)
+                                  EV_RING_Z, EV_TOUT, EV_TRING, EV_TZ, NC, NEV, RP_COS, RP_DA, RP_DR, RP_PERP, RP_SIN,
+                                  RollerRates, film_scratch, pocket_friction, pocket_skew_couple, pocket_wall_force,
+                                  roller_drag, roller_lubrication, roller_traction)
 from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
@@ -358,6 +361,14 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
             case.bearing.Qrib[j] = Qr
             case.bearing.nrib[j, 0] = work.ribc[2]
             case.bearing.nrib[j, 1] = work.ribc[3]
+            # the inner ring's axis in this meridian plane, about which it spins (sim.physics.friction,
+            # "Inner ring"; it translates, it does not tilt here)
+            pose_ring = case.bearing.ring[j]
+            pose_ring[RP_DR] = ring[1]
+            pose_ring[RP_DA] = da
+            pose_ring[RP_COS] = 1.0
+            pose_ring[RP_SIN] = 0.0
+            pose_ring[RP_PERP] = e_perp
             # the film at this roller's loads, speed and orbit speed, so that it follows the roller
             # around the bearing (under a radial load a roller crosses the load zone in a fraction
             # of a window)
@@ -390,15 +401,15 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
             for i in range(3):
                 M[i] += ev[EV_MU] * A[0, i] + ev[EV_MS] * A[1, i] + ev[EV_MW] * A[2, i]
             tot[TO_TOUT] += ev[EV_TOUT]
-            tot[TO_TIN] += ev[EV_TZ] + ev[EV_TOUT]
+            tot[TO_TIN] += ev[EV_TRING]
             for i in range(NC):
                 tot[TO_P0 + i] += ev[EV_P0 + i]
                 rows[NRING + NCAGE + E_DISS + i] = ev[EV_P0 + i]
             tot[TO_PSKEW] += ev[EV_PSKEW]
             rows[NRING + NCAGE + E_SKEW] = ev[EV_PSKEW]
-            rows[NRING + NCAGE + E_IN] = body.wi * (ev[EV_TZ] + ev[EV_TOUT])
+            rows[NRING + NCAGE + E_IN] = body.wi * ev[EV_TRING]
             rows[NRING + NCAGE + A_TOUT] = ev[EV_TOUT]
-            rows[NRING + NCAGE + A_TIN] = ev[EV_TZ] + ev[EV_TOUT]
+            rows[NRING + NCAGE + A_TIN] = ev[EV_TRING]
         # translation (cylindrical coordinates: centrifugal and Coriolis terms)
         a_r = r * wphi * wphi + Fr_ / m
         a_z = Fz_ / m

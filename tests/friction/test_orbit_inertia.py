@@ -10,9 +10,9 @@ import pytest
 
 import sim
 from sim.api.cases import operating_points
-from sim.api.friction_model import coupled_solution
+from sim.api.friction_model import coupled_solution, drive_torque
 from sim.api.simulation import build_models, resolved
-from sim.physics.friction import (COMPONENTS, EV_MU, EV_P0, EV_TOUT, EV_TZ, NC, NEV, NFL, lubrication_state,
+from sim.physics.friction import (COMPONENTS, EV_MU, EV_P0, EV_TZ, NC, NEV, NFL, lubrication_state,
                                   pocket_wall_force, roller_friction)
 from sim.solvers.kinematics import FINAL_TOLERANCE_FACTOR, free_roller_speeds
 
@@ -44,7 +44,8 @@ def solved_again_at_the_final_film(friction, op, raw, fr, load_columns=NFL):
     """The free rollers solved again from their solution with every loaded roller's film taken at
     its solved spin and orbit speed (the solver takes it again only where one moved by more than
     FREE_FILM_SPIN_TOLERANCE): (spins, skews, orbit speeds, friction moments about the roller
-    axes, loaded rollers, c, outer-ring torque, power [N mm/s], its problem, its FreeRollers, the
+    axes, loaded rollers, c, the drive's torque (the outer ring's where the inner ring is centred;
+    sim.api.friction_model.drive_torque), power [N mm/s], its problem, its FreeRollers, the
     z-moments of the rollers' contacts about the bearing axis [N mm]). ``load_columns``: the width of
     the friction loads' work array (NFL; another width is refused)."""
     wc, wR, psi, _, free = fr["kinematics"]
@@ -72,7 +73,7 @@ def solved_again_at_the_final_film(friction, op, raw, fr, load_columns=NFL):
         M[j] = ev[EV_MU]
         T_z[j] = ev[EV_TZ]
         power += ev[EV_P0:EV_P0 + NC].sum()
-    return wR, psi, orbit, M, loaded, c, float(totals[EV_TOUT]), power, pb, again, T_z
+    return wR, psi, orbit, M, loaded, c, drive_torque(totals), power, pb, again, T_z
 
 
 @pytest.mark.parametrize("name", ["fast_trb", "resting_trb", "wedged_tsrb"])
@@ -134,12 +135,12 @@ def test_the_torque_is_the_power_loss_over_the_speed_with_the_spin_up_slip(name)
 def test_the_film_taken_at_the_final_spins_moves_the_torque_by_less_than_1e_4(name):
     """The free solve takes a roller's film again only where its spin moved by more than
     FREE_FILM_SPIN_TOLERANCE (1e-3) from its film's (sim.solvers.kinematics). Solved again with
-    every film at its final spin, the torque (the outer ring's, and the power loss over the speed: the
+    every film at its final spin, the torque (the drive's, and the power loss over the speed: the
     contacts' losses, the spin-up slip and the pocket walls' work sum_j T_z,j (Omega_j - omega_c))
     moves by less than 1e-4 (the film goes as the entrainment speed^0.67)."""
     friction, op, raw, fr = solved(CASES[name])
-    wR, _, orbit, _, _, c, T_out, power, pb, free, T_z = solved_again_at_the_final_film(friction, op, raw, fr)
-    assert T_out == pytest.approx(fr["torque"], rel=1e-4)
+    wR, _, orbit, _, _, c, T_drive, power, pb, free, T_z = solved_again_at_the_final_film(friction, op, raw, fr)
+    assert T_drive == pytest.approx(fr["torque"], rel=1e-4)
     change = wR - np.roll(wR, 1)
     walls = float(T_z @ (orbit - free.wc[0]))
     assert (power + 0.5 * c * float(change @ change) + walls) / pb.wi == pytest.approx(fr["torque"], rel=1e-4)

@@ -14,6 +14,7 @@ from scipy.optimize import minimize_scalar
 
 import sim
 from sim.api.cases import operating_points
+from sim.api.friction_model import inner_ring_poses
 from sim.api.simulation import build_friction, build_model
 from sim.physics import friction as F
 from sim.physics.elasticity import END_DROP_POINTS
@@ -176,7 +177,8 @@ def synthetic(crown=0.0, tilt_load=0.0):
     bearing = F.ContactLoads(q=q, Qrib=np.zeros(1), R_eq=R_eq, w=X_SYN[1] - X_SYN[0], E_star=2.27e5,
                              rib_end=np.zeros(6), nrib=np.zeros((1, 2)), rho_m=5.0,
                              free=np.full((1, 2, N_SYN), 1e-3),     # every slice loaded: full strips
-                             end_drop=np.zeros((2, 2, END_DROP_POINTS)))  # a straight profile
+                             end_drop=np.zeros((2, 2, END_DROP_POINTS)),  # a straight profile
+                             ring=inner_ring_poses(1, np.zeros(3), 0.0))   # centred, untilted
     shape = (1, 2, N_SYN)
     film = F.FilmState(*(np.zeros(shape) for _ in range(6)), np.zeros(shape + (quad.wq.shape[0],)),
                        *(np.zeros(1) for _ in range(4)))

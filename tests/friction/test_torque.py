@@ -381,8 +381,11 @@ def test_cage_pocket_friction_enters_the_load_distribution():
     quasi-static balance takes it back (issue: friction forces enter the force balance), with the
     cage rigid (friction.cage_guidance = rigid: the free rollers carry no pocket force). With no
     pocket friction the roller loads are those of the frictionless balance up to the lateral sum of
-    the inner raceway's tangential tractions, which moves the ring across the load (session 27:
-    1.2e-4 of the loads here, tolerance 1e-3); with pocket friction they change beyond the solver's
+    the inner raceway's tangential tractions, which moves the ring across the load: 3.2e-3 of the
+    loads here, tolerance 5e-3 (session 35; 1.2e-4 in session 27, before the inner ring's surface
+    moved about its own axis: on the ring displaced by delta_r the rigid cage's rollers slip by
+    about omega_i delta_r / 2 on each raceway, which the free rollers' own orbit speeds take up);
+    with pocket friction they change beyond the solver's
     tolerance (1e-9; measured 5.8e-5), while the bearing still balances Fa and the energy balance
     still holds."""
     base = ["bearing=trb_32208", "load.Fr=4000", "friction.cage_guidance=rigid"]
@@ -390,7 +393,7 @@ def test_cage_pocket_friction_enters_the_load_distribution():
     rough = sim.simulate(sim.load_config(base + ["friction.cage_friction_coefficient=0.3"])).isel(design=0, case=0)
     plain = sim.simulate(sim.load_config(base + ["friction.enabled=false"])).isel(design=0, case=0)
     # without pocket friction only the tractions' lateral sum feeds back
-    np.testing.assert_allclose(free.Q.values, plain.Q.values, rtol=1e-3)
+    np.testing.assert_allclose(free.Q.values, plain.Q.values, rtol=5e-3)
     assert float(free.ring_displacement.sel(direction="lateral")) != 0.0
     change = np.abs(rough.Q.values - free.Q.values).max() / free.Q.values.max()
     print(f"pocket friction changes the loads by {change:.2e} of the largest")
