@@ -689,7 +689,7 @@ def test_settled_windows_whose_power_balance_does_not_close_are_no_steady_state(
     1e-3 of a real one) does not move within the run, so its window means settled (cage speed 8e-9 per
     window) and the run was reported converged, 4.8 % below the quasi-static torque, while 3.6 % of the
     drive's work went into the cage's kinetic energy. A steady state must close its power balance
-    (solver.dynamic.steady_tolerance_power, 2 %): this one is reported as none, naming the
+    (solver.dynamic.steady_tolerance_power, 0.5 %): this one is reported as none, naming the
     imbalance. (The time domain's tsrb_pinion_long at 5 / 4 kN, 5500 rpm, whose contacts did net work of
     53 % of the drive's there, is refused the same way; README, dynamic solver.)"""
     *_, dc = dynamic_case(["bearing=tsrb_prototype", "load.Fa=2500", "load.Fr=1500", "load.speed=3000",
