@@ -65,7 +65,9 @@ def cross_validation(search, ds):
     {name: its units})."""
     s = search.study.surrogate
     sets = search.training_sets(ds)
-    return (cross_validate_outputs(sets, search.space.bounds, search.settings, int(s.cv_folds), float(s.interval)),
+    return (cross_validate_outputs(sets, search.space.bounds, search.settings, int(s.cv_folds), float(s.interval),
+                                   lambda q, n: search.log(f"report: {int(s.cv_folds)}-fold cross-validation of the {q} "
+                                                           f"surrogate on {n} points")),
             {q: units for q, (_, _, _, units) in sets.items()})
 
 
@@ -327,6 +329,7 @@ def write_report(search, ds, reason):
     i, key = search.best(ds)
     x = design_matrix(ds, search.space)[i]
     bearing = search.space.bearing_values(x)
+    search.log(f"report: simulating the verified best at {len(search.case_cfgs)} load case(s)")
     best_runs = [simulate_point(design_config(cfg, bearing), search.quantities) for cfg in search.case_cfgs]
     best_records = [r for _, r in best_runs]
     results = [d for d, _ in best_runs]
@@ -339,6 +342,7 @@ def write_report(search, ds, reason):
     rows = comparison_rows(search, ("verified best", best_record, best_m))
     attrs = {q: ds[q].attrs for q in ds.data_vars}
     cv, units = cross_validation(search, ds)
+    search.log("report: figures")
     plot_history(search, vds, rows[1:], out / "history.png")
     label = load_case_label(search.study)
     if cv:      # outputs with fewer points than surrogate.cv_folds are not cross-validated

@@ -76,8 +76,9 @@ def cross_validate(X, y, bounds, log, settings, n_splits, level, name="y", units
                            coverage=float(np.mean((y >= lower) & (y <= upper))))
 
 
-def cross_validate_outputs(sets, bounds, settings, n_splits, level):
-    """:func:`cross_validate` of every output of a study: {name: CrossValidation}.
+def cross_validate_outputs(sets, bounds, settings, n_splits, level, progress=None):
+    """:func:`cross_validate` of every output of a study: {name: CrossValidation}; ``progress(name,
+    number of points)``, if given, is called before each output's (a long study's report shows it).
 
     ``sets`` is {name: (X, y, log, units)} (studies.loop.DesignSearch.training_sets); outputs
     with fewer than ``n_splits`` points are left out. The coverage of each is the fraction of
@@ -85,5 +86,10 @@ def cross_validate_outputs(sets, bounds, settings, n_splits, level):
     ``settings.calibrate`` the calibration factor is found from the training folds only, so
     this measures the calibrated intervals on unseen points.
     """
-    return {q: cross_validate(X, y, bounds, log, settings, n_splits, level, q, units)
-            for q, (X, y, log, units) in sets.items() if len(y) >= n_splits}
+    result = {}
+    for q, (X, y, log, units) in sets.items():
+        if len(y) >= n_splits:
+            if progress is not None:
+                progress(q, len(y))
+            result[q] = cross_validate(X, y, bounds, log, settings, n_splits, level, q, units)
+    return result
