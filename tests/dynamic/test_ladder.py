@@ -390,6 +390,30 @@ def test_steady_state_of_a_fast_radially_loaded_tsrb_matches_the_quasi_static_so
     assert abs(err_c) < 0.005
 
 
+def test_a_radially_loaded_trb_settles_over_whole_cage_turns():
+    """TRB 31313 at 21.2 / 22 kN, 3390 rpm, 45 degC (pinion oil): its free rollers' rolling orbit
+    speed varies by about delta_r / r = 8e-4 around the orbit (the inner ring's surface about its own
+    axis), some 0.14 mm along the pocket over half a turn against the 0.15 mm play, so each rests on
+    either wall and the steady state repeats with the cage turn. Windows of one inner-ring turn
+    alternated by +-4.5e-4 in cage speed and found no steady state in 30 windows (session 35);
+    windows of whole cage turns under every radial load (sim.api.dynamic_model.integration_settings)
+    settle it (measured: 5 windows, torque +0.04 %, cage speed -3.6e-4, loads 0.39 %, power balance
+    2e-5). Issue
+    18's targets: torque within 3 %, cage speed within 0.5 %, power balance within 0.5 %, the
+    largest load difference within 1 % of the largest load (session 34: 0.49 %)."""
+    summary, qs, integ = steady_run(["bearing=trb_31313", "lubricant=pinion_oil", "load.Fa=21200", "load.Fr=22000",
+                                     "load.speed=3390", "load.oil_temperature=45"])
+    assert integ.settings.window_angle == pytest.approx(2.0 * np.pi, rel=1e-12), "whole cage turns"
+    drive, lost, _ = dyn.window_work(integ.y[integ.average_from], integ.y[-1], integ.Z)
+    err_T = summary["torque"] / qs["torque"] - 1.0
+    err_c = summary["cage_speed"] / qs["cage_speed"] - 1.0
+    err_Q = np.abs(summary["Q"] - qs["Q"]).max() / qs["Q"].max()
+    print(f"{integ.windows} windows, torque {err_T:+.2%}, cage speed {err_c:+.1e}, loads {err_Q:.2e}, power "
+          f"{(lost - drive) / drive:+.1e}")
+    assert abs(err_T) < 0.03 and abs(err_c) < 0.005 and abs(lost - drive) < 0.005 * drive
+    assert err_Q < 0.01
+
+
 @pytest.mark.xfail(strict=True, reason=(
     "the rollers' axial motion along the orbit: in the time domain the TSRB rollers move along their axes at up to "
     "25 mm/s as they cross the load zone's edges, and the lateral slip of that motion loads each by 4-6 N along its "
