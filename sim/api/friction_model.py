@@ -10,7 +10,7 @@ import numpy as np
 from sim.io import RPM_PER_RAD_S, UM_PER_MM, W_PER_N_MM_PER_S
 from sim.physics.contact import hertz_point_radii
 from sim.physics.ehl import FILM_FORMULAS, PRESSURE_VISCOSITY_MODELS, FilmRheology, SolidFriction, roelands_index
-from sim.physics.friction import (TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TOUT, EV_TRING, EV_TZ, FL_RING_R, FL_RING_T,
+from sim.physics.friction import (TRACTION_LAWS, EV_MU, EV_P0, EV_PSKEW, EV_TRING, EV_TZ, FL_RING_R, FL_RING_T,
                                   FL_RING_Z, FL_U, FL_W, NC, NEV, NFL, NRP, RP_COS, RP_DA, RP_DR, RP_SIN, ContactLoads,
                                   FilmState, FrictionCase, FrictionParams, lubrication_state, ring_surface_speed,
                                   roller_friction, width_quadrature)
@@ -380,7 +380,7 @@ def drive_torque(totals):
     axis less theirs about the bearing axis (sim.physics.friction, "Inner ring"; equal where the ring
     is centred and untilted). Times omega_i it is the power the drive puts in, the power loss at the
     balance (module docstring of sim.physics.friction)."""
-    return float(totals[EV_TOUT] + totals[EV_TRING] - (totals[EV_TZ] + totals[EV_TOUT]))
+    return float(totals[EV_TRING] - totals[EV_TZ])     # EV_TOUT cancels: T_out + T_ring - (T_z + T_out)
 
 
 def inner_ring_poses(Z, ring, tilt):

@@ -388,9 +388,9 @@ def ring_surface_speed(wi_s, wc, ring, Xr, Xz):
     """Speed along e_t of a ring's surface at the meridian point (Xr, Xz) in the cage frame [mm/s]:
     the ring spins at wi_s [rad/s] about its own axis (0 for the outer ring, omega_i for the inner),
     at the distance r' of the point from that axis, and the cage frame turns at wc [rad/s] about the
-    bearing axis; ``ring`` (NRP,): the inner ring's pose (module docstring, "Inner ring")."""
-    r_own = to_ring_turned(Xr, Xz, ring[RP_DR], ring[RP_DA], ring[RP_COS], ring[RP_SIN])[0]
-    return wi_s * r_own - wc * Xr
+    bearing axis; ``ring`` (NRP,): the inner ring's pose (module docstring, "Inner ring"). The first
+    value of :func:`_ring_motion` (any normal)."""
+    return _ring_motion(1, wi_s, wc, ring, Xr, Xz, 0.0, 1.0)[0]
 
 
 @internal_kernel
