@@ -9,6 +9,13 @@ class InputError(ValueError):
     """Invalid load, solver or friction input; the message names the key, its value and the allowed range."""
 
 
+class OutOfRangeError(InputError):
+    """A load case beyond the model's validity for this bearing
+    (:meth:`sim.api.bearing_model.BearingModel.check_limits`): refused input when it is a run's only
+    case; in a grid of cases, a case without a result (``converged`` False, this message its
+    reason), as a multirun records a job of that case."""
+
+
 class GeometryError(ValueError):
     """Impossible bearing geometry; the message names the parameter, its value and the bound."""
 

@@ -11,10 +11,13 @@ result (or ``failed.json``) in its job folder and logs one line; ``sweep.nc`` fo
 last job. Any ``bearing.<param>=`` override works (e.g. ``bearing.PCR=120``).
 
 Exit status (one error path, :mod:`sim.api.cli`): 0 when every case converged; 1 when some
-did not (written with ``converged = False``) or the result file cannot be written (one line
-naming the file; the converged cases stay in the result cache); 2 for refused input (one line
-``error: ...`` naming the key, its value and the allowed range or bound; no run folder is
-left behind); any other exception is a bug and keeps its traceback (exit 1).
+have no result (not converged, or a grid's case beyond the model's validity limits; written with
+``converged = False``, each reason a line on stderr, then one line counting them) or the result
+file cannot be written (one line naming the file; the converged cases stay in the result
+cache); 2 for refused input (one line ``error: ...`` naming the key, its value and the allowed
+range or bound; a single case beyond the validity limits is refused input; no run folder is
+left behind); 130 when interrupted (Ctrl-C: one line ``interrupted: ...``, finished cases and jobs
+kept, the same command resumes); any other exception is a bug and keeps its traceback (exit 1).
 """
 import shutil
 import sys
@@ -26,7 +29,7 @@ from hydra.types import RunMode
 from omegaconf import DictConfig
 
 from sim import CONF_DIR, io
-from sim.api.cli import PROJECT_ERRORS, refuse
+from sim.api.cli import INTERRUPTED, PROJECT_ERRORS, refuse
 from sim.api.sweep import NEW_RUN_DIRS, WriteError, remove_stale_files, run_cases, run_job, write_result
 from sim.config_schema import undeclared_key
 
@@ -48,9 +51,11 @@ def summary(ds):
     for c in range(ds.sizes["case"]):
         case = ds.isel(design=0, case=c)
         head = (f"{b}  Fa={float(case.Fa):.0f} N  Fr={float(case.Fr):.0f} N  "
-                f"n={float(case.speed):.0f} rpm  tilt={float(case.tilt):.3f} deg")
+                f"n={float(case.speed):.0f} rpm  tilt={float(case.tilt):.3f} deg  "
+                f"oil {float(case.oil_temperature):.1f} degC")
         if not bool(case.converged):
-            lines.append(f"{head}\n  NOT CONVERGED after {int(case.iterations)} iterations")
+            reason = io.case_failure(ds, [float(case[name]) for name in io.CASE_COORDS])
+            lines.append(f"{head}\n  NO RESULT: {reason or f'not converged after {int(case.iterations)} iterations'}")
             continue
         lines.append(
             f"{head}\n"
@@ -96,8 +101,9 @@ def main(cfg: DictConfig) -> None:
     print(summary(ds))
     print(f"written: {out} ({n['cases']} cases, {n['cached']} from the cache)")
     if not bool(ds.converged.all()):
-        print("some cases did not converge (written with converged = False):\n"
-              + ds.attrs.get(io.FAILED_CASES, ""), file=sys.stderr)
+        print(ds.attrs.get(io.FAILED_CASES, ""), file=sys.stderr)
+        print(f"{n['cases'] - int(ds.converged.sum())} of {n['cases']} cases have no result (written with "
+              "converged = False; the reasons above and in its failed_cases attribute)", file=sys.stderr)
         raise SystemExit(1)
 
 
@@ -135,4 +141,9 @@ if __name__ == "__main__":
     missing = missing_config_file(sys.argv[1:])
     if missing:
         refuse(f"run refused before anything ran: {missing}")
-    main()
+    try:
+        main()
+    except KeyboardInterrupt:   # Ctrl-C; a parallel sweep's workers end with it (joblib's loky aborts them)
+        print("\ninterrupted: every finished case is kept in the result cache (output.cache_dir) and every "
+              "finished job of a multirun in its folder; the same command resumes from them", file=sys.stderr)
+        raise SystemExit(INTERRUPTED)

@@ -18,7 +18,7 @@ import sys
 import time
 from pathlib import Path
 
-from sim.api.cli import PROJECT_ERRORS, refused
+from sim.api.cli import INTERRUPTED, PROJECT_ERRORS, refused
 from sim.api.sweep import remove_stale_files
 from studies.config import LOAD_KEYS, StudyConfigError, compose, output_dir
 from studies.loop import DesignSearch
@@ -94,10 +94,6 @@ def elapsed_log():
         print(f"[{time.perf_counter() - t0:6.1f} s] {msg}", flush=True)
 
     return log
-
-
-#: exit status of a search interrupted by Ctrl-C (128 + SIGINT, as a shell reports it)
-INTERRUPTED = 130
 
 
 def main(argv=None):

@@ -11,7 +11,7 @@ import numpy as np
 from sim import io
 from sim._math.jit import clock, solver_seconds
 from sim.config_schema import LoadConfig, SolverConfig, check_node
-from sim.errors import InputError
+from sim.errors import InputError, OutOfRangeError
 from sim.geometry import ROLLER_END_CLIP, Geometry
 from sim.physics import ratings
 from sim.physics.contact import contact_modulus, hertz_line_pressure, hertz_point_radii, slice_contact_meridian
@@ -205,8 +205,8 @@ class BearingModel:
         return text
 
     def check_limits(self, op: OperatingPoint):
-        """Refuse a load case beyond the validity of the model, before any solve: InputError
-        naming the load key, its value, the allowed range for this bearing and the reason.
+        """Refuse a load case beyond the validity of the model, before any solve: OutOfRangeError
+        (an InputError) naming the load key, its value, the allowed range for this bearing and the reason.
 
         - speed x Dpw <= solver.max_speed_dm (quasi-static model, no roller / cage dynamics, no
           heat balance of the bearing);
@@ -225,7 +225,7 @@ class BearingModel:
         g = self.geometry
         s = self.settings
         if op.speed_rpm > s.max_speed_dm / g.Dpw:
-            raise InputError(f"load.speed = {op.speed_rpm:g} rpm is outside the allowed range for this bearing: "
+            raise OutOfRangeError(f"load.speed = {op.speed_rpm:g} rpm is outside the allowed range for this bearing: "
                              f"<= solver.max_speed_dm / Dpw = {s.max_speed_dm:g} / {g.Dpw:g} = "
                              f"{s.max_speed_dm / g.Dpw:g} rpm (beyond it roller and cage dynamics and the bearing's "
                              "heat balance govern, which the quasi-static model lacks; conf/solver/quasi_static.yaml)")
@@ -247,9 +247,9 @@ class BearingModel:
                "stress, beyond which the steel yields and the elastic contact model is invalid; "
                "conf/solver/quasi_static.yaml")
         if op.Fr > k * C0:
-            raise InputError(f"load.Fr = {op.Fr:g} N is outside the allowed range for this bearing: "
+            raise OutOfRangeError(f"load.Fr = {op.Fr:g} N is outside the allowed range for this bearing: "
                              f"<= {k * C0:.6g} N ({why})")
-        raise InputError(f"load.Fa = {op.Fa:g} N is outside the allowed range for this bearing at load.Fr = "
+        raise OutOfRangeError(f"load.Fa = {op.Fa:g} N is outside the allowed range for this bearing at load.Fr = "
                          f"{op.Fr:g} N: <= {(k * C0 - f['X0'] * op.Fr) / f['Y0']:.6g} N ({why})")
 
     def _check_axial_share(self, op: OperatingPoint):
@@ -265,7 +265,7 @@ class BearingModel:
                    "centres of its two crown circles, which lie on a normal to the axis), so below it the inner ring "
                    "has no equilibrium at the rollers' place, only one with the rollers tilted by degrees in their "
                    "osculating raceways and the ring millimetres off")
-            raise InputError(
+            raise OutOfRangeError(
                 f"load.Fa = {op.Fa:.8g} N is outside the allowed range for this bearing at load.Fr = {op.Fr:g} N: "
                 f"> Fr tan({float(np.degrees(angle)):.4g} deg) = {bound:.8g} N, the single row's axial share: "
                 f"{why} (an opposed bearing would take the rest)")

@@ -5,7 +5,8 @@ Every entry point (``python -m sim.run``, ``python -m sim.api.sweep collect``,
 errors into one line on stderr, ``error: <message>``, and exit status 2, before it creates any
 output folder; any other exception is a bug and keeps its traceback (exit status 1). A
 message that lists several problems (a :class:`sim.errors.ConfigError` names every bad key, one
-per line) is joined with "; " into that one line.
+per line) is joined with "; " into that one line. Ctrl-C (SIGINT) ends a run with one line
+``interrupted: ...`` saying what is kept and exit status :data:`INTERRUPTED`, no traceback.
 """
 import sys
 
@@ -16,6 +17,8 @@ from sim.errors import GeometryError, InputError
 PROJECT_ERRORS = (InputError, GeometryError)
 #: exit status of a refused input
 REFUSED = 2
+#: exit status of a run interrupted by Ctrl-C (128 + SIGINT, as a shell reports it)
+INTERRUPTED = 130
 
 
 def one_line(message):

@@ -32,7 +32,7 @@ from sim.api.cases import operating_points
 from sim.api.friction_model import FrictionModel, coupled_solution
 from sim.api.processes import worker_pool
 from sim.api.schema import validate
-from sim.errors import InputError
+from sim.errors import InputError, OutOfRangeError
 from sim.geometry import Geometry
 from sim.io import (DesignFailure, DesignResult, build_batch_dataset, build_dataset, build_dynamic_dataset,
                     failure_message, written_optional)
@@ -185,26 +185,59 @@ def optional_outputs(friction, dynamic=False):
     return written_optional(friction is not None, friction is not None and friction.par.skew, dynamic)
 
 
-def _solve_design(cfg, case_slice=slice(None), plain=None):
+# the raw state of a case refused before any solve (case_results: its outputs without a solution)
+_NOT_SOLVED = {"converged": False, "iterations": 0, "wall_time": 0.0, "solver_info": {"unrested_rollers": 0}}
+
+
+def _out_of_range(model, ops, output_cfg, grid):
+    """The model's validity limits (:meth:`BearingModel.check_limits`) of every case, before
+    anything is solved: {case index: its results without a solution (``converged`` False, the
+    refusal its reason)} of the cases beyond them. OutOfRangeError instead when ``grid`` is False
+    (a run's only case is refused input)."""
+    refused = {}
+    for i, op in enumerate(ops):
+        try:
+            model.check_limits(op)
+        except OutOfRangeError as exc:
+            if not grid:
+                raise
+            refused[i] = case_results(model, op, _NOT_SOLVED | {"status": f"refused before the solve: {exc}"},
+                                      output_cfg)
+    return refused
+
+
+def _is_grid(ops, grid):
+    """:func:`simulate`'s ``grid``: as given, or whether there is more than one case."""
+    return len(ops) > 1 if grid is None else bool(grid)
+
+
+def _solve_design(cfg, case_slice=slice(None), plain=None, grid=None):
     """Everything :func:`simulate` does but the Dataset: (model, ops, results, plain config,
     optional variables)."""
     plain = resolved(cfg) if plain is None else plain
     model, friction = build_models(cfg, plain)   # validates first
     ops = operating_points(plain["load"])
-    for op in ops:   # the model's validity limits: InputError before anything is solved
-        model.check_limits(op)
     output = plain["output"]
-    results = [solve_case(model, friction, op, output) for op in ops[case_slice]]
+    refused = _out_of_range(model, ops, output, _is_grid(ops, grid))
+    results = [refused[i] if i in refused else solve_case(model, friction, op, output)
+               for i, op in list(enumerate(ops))[case_slice]]
     return model, ops, results, plain, optional_outputs(friction)
 
 
-def simulate(cfg):
+def simulate(cfg, grid=None):
     """Run the configured bearing through every load case of ``cfg.load``.
 
     Parameters
     ----------
     cfg : omegaconf.DictConfig
         Composed config (``sim.load_config``): bearing, material, lubricant, friction, load, solver, output.
+    grid : bool, optional
+        Whether the cases belong to a grid: then a case beyond the model's validity limits
+        (:meth:`BearingModel.check_limits`: speed, static load, the single row's axial share) is a
+        case without a result (``converged`` False, the refusal its reason) and the others are
+        solved, as a multirun records such a job; else it is refused input (OutOfRangeError, an
+        InputError) before anything is solved. None: a grid when ``cfg.load`` has more than one
+        case (:func:`sim.api.sweep.run_cases` passes True for each single case it runs of a grid).
 
     Returns
     -------
@@ -213,12 +246,12 @@ def simulate(cfg):
     """
     plain = resolved(cfg)
     if plain["solver"]["name"] == "dynamic":
-        return _simulate_dynamic(cfg, plain)
-    model, ops, results, plain, optional = _solve_design(cfg, plain=plain)
+        return _simulate_dynamic(cfg, plain, grid)
+    model, ops, results, plain, optional = _solve_design(cfg, plain=plain, grid=grid)
     return build_dataset(model.geometry, ops, results, config_yaml(cfg, plain), model.settings, optional)
 
 
-def _simulate_dynamic(cfg, plain):
+def _simulate_dynamic(cfg, plain, grid):
     """:func:`simulate` with ``solver=dynamic``: one load case through the time-domain solver
     (:mod:`sim.api.dynamic_model`), its time series and steady state (sim.io.build_dynamic_dataset)."""
     model, friction = build_models(cfg, plain)   # validates first
@@ -230,20 +263,23 @@ def _simulate_dynamic(cfg, plain):
         raise InputError("solver=dynamic needs friction.enabled = true and load.speed > 0 (the rollers and the "
                          "cage are driven by the traction)")
     op = ops[0]
-    model.check_limits(op)
+    refused = _out_of_range(model, ops, plain["output"], _is_grid(ops, grid))
     t0 = clock()
     dyn = plain["solver"]["dynamic"]
-    try:
-        dcase = dynamic_model.prepare(model, friction, op, dyn)
-    except dynamic_model.NoQuasiStaticStart as exc:
-        # no start, no run: a case without a result (converged False, its reason in the dataset's
-        # failed_cases) and an empty time series, as a quasi-static run reports the same case
-        summary = combined_results(model, op, exc.raw, exc.fr, plain["output"], t0)
-        summary["status"] = f"{exc}: {failure_message(summary)}"
-        series = None
+    series = None
+    if refused:   # a grid's case beyond the validity limits: no run
+        summary = refused[0]
     else:
-        integ = dynamic_model.run(dcase)
-        summary, series = dynamic_model.outputs(model, op, dcase, integ, solver_seconds(t0), plain["output"])
+        try:
+            dcase = dynamic_model.prepare(model, friction, op, dyn)
+        except dynamic_model.NoQuasiStaticStart as exc:
+            # no start, no run: a case without a result (converged False, its reason in the dataset's
+            # failed_cases) and an empty time series, as a quasi-static run reports the same case
+            summary = combined_results(model, op, exc.raw, exc.fr, plain["output"], t0)
+            summary["status"] = f"{exc}: {failure_message(summary)}"
+        else:
+            integ = dynamic_model.run(dcase)
+            summary, series = dynamic_model.outputs(model, op, dcase, integ, solver_seconds(t0), plain["output"])
     return build_dynamic_dataset(model.geometry, op, summary, series, config_yaml(cfg, plain), model.settings, dyn,
                                  optional_outputs(friction, dynamic=True))
 

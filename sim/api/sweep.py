@@ -451,17 +451,19 @@ def _store(path, ds):
         _warn_unwritable(path.parent.parent, exc)
 
 
-def _simulate_case(cfg, op, path):
+def _simulate_case(cfg, op, path, grid=False):
     cfg.load.update(dict(zip(io.CASE_COORDS, op.values())), zip=[])
-    ds = simulate(cfg)
+    ds = simulate(cfg, grid=grid)
     log.debug("computed case %s %s", path.stem if path is not None else "(no cache)", op)
     if path is not None and bool(ds.converged.all()):
         _store(path, ds)
     return ds
 
 
-def compute_case(cfg, op, path, wait=True):
+def compute_case(cfg, op, path, wait=True, grid=False):
     """Dataset of one load case: from the cache file ``path`` or computed (and cached when converged).
+    ``grid``: the case is one of a grid (:func:`sim.api.simulation.simulate`: beyond the model's
+    validity limits it is a case without a result, not refused input).
 
     Returns the Dataset and whether it came from the cache. ``cfg`` is a private copy whose
     ``load`` node this function sets to the case. The case is claimed while it is computed
@@ -473,7 +475,7 @@ def compute_case(cfg, op, path, wait=True):
     if ds is not None:
         return ds, True
     if path is None:
-        return _simulate_case(cfg, op, None), False
+        return _simulate_case(cfg, op, None, grid), False
     while True:
         state, token = _claim(path)
         if state == "theirs":
@@ -487,7 +489,7 @@ def compute_case(cfg, op, path, wait=True):
             ds = _cached(path, op)   # finished by another run between our first look and the claim
             if ds is not None:
                 return ds, True
-            return _simulate_case(cfg, op, path), False
+            return _simulate_case(cfg, op, path, grid), False
         finally:
             if state == "mine":
                 _release(path, token)
@@ -497,7 +499,9 @@ def run_cases(cfg, progress=True):
     """All load cases of ``cfg.load`` (one or a grid), each from the cache or computed.
 
     Cases that another run is computing (claimed in the shared cache) are left for last and
-    then taken from the cache once it is there.
+    then taken from the cache once it is there. A case of a grid beyond the model's validity
+    limits is a case without a result, its refusal the reason (as a multirun's job of it); a
+    single case beyond them is refused input (OutOfRangeError).
 
     Parameters
     ----------
@@ -513,15 +517,15 @@ def run_cases(cfg, progress=True):
         ``computed``, ``not_converged``.
     """
     ops = operating_points(cfg.load)
-    base, one = _key_base(cfg), copy.deepcopy(cfg)
+    base, one, grid = _key_base(cfg), copy.deepcopy(cfg), len(ops) > 1
     paths = [cache_file(cfg, op, base) for op in ops]
     done = [None] * len(ops)
-    for i in tqdm(range(len(ops)), desc="cases", unit="case", disable=None if progress and len(ops) > 1 else True):
-        ds, hit = compute_case(one, ops[i], paths[i], wait=False)
+    for i in tqdm(range(len(ops)), desc="cases", unit="case", disable=None if progress and grid else True):
+        ds, hit = compute_case(one, ops[i], paths[i], wait=False, grid=grid)
         if ds is not None:
             done[i] = ds, hit
     for i in (i for i, d in enumerate(done) if d is None):   # claimed by another run: its result, or ours
-        done[i] = compute_case(one, ops[i], paths[i])
+        done[i] = compute_case(one, ops[i], paths[i], grid=grid)
     cached = sum(hit for _, hit in done)
     config_yaml = OmegaConf.to_yaml(cfg, resolve=True)
     ds = io.combine_cases([ds for ds, _ in done], config_yaml)
@@ -669,7 +673,8 @@ def warm_up(configs, attempts=3):
         kind = _kind(cfg)
         base = _key_base(cfg)
         dynamic = OmegaConf.select(cfg, "solver.name") == "dynamic"
-        for op in operating_points(cfg.load):
+        ops = operating_points(cfg.load)
+        for op in ops:
             if kind in done or tried.get(kind, 0) >= attempts:
                 break
             if _is_cached(cfg, op, base):
@@ -678,9 +683,10 @@ def warm_up(configs, attempts=3):
                 if dynamic:
                     short = copy.deepcopy(cfg)
                     short.solver.dynamic.update(DYNAMIC_WARM_UP)
-                    ds = _simulate_case(short, op, None)
+                    ds = _simulate_case(short, op, None, len(ops) > 1)
                 else:
-                    ds, _ = compute_case(copy.deepcopy(cfg), op, cache_file(cfg, op, base), wait=False)
+                    ds, _ = compute_case(copy.deepcopy(cfg), op, cache_file(cfg, op, base), wait=False,
+                                         grid=len(ops) > 1)
             except Exception:  # the job records the error; another job of this kind warms up
                 break
             if ds is None:

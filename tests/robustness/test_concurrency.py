@@ -50,9 +50,9 @@ def counted(monkeypatch):
     calls = []
     real = sweep.simulate
 
-    def counting(cfg):
+    def counting(cfg, grid=None):
         calls.append((float(cfg.load.Fa), float(cfg.load.Fr)))
-        return real(cfg)
+        return real(cfg, grid=grid)
 
     monkeypatch.setattr(sweep, "simulate", counting)
     return calls

@@ -84,7 +84,7 @@ def test_multirun_refuses_in_one_line_and_makes_no_folder(tmp_path):
 def test_unexpected_exception_keeps_its_traceback_and_exits_1(tmp_path):
     """A bug is not an input error: traceback, exit status 1 (Hydra's report), nothing hidden."""
     code = ("import sys, runpy, sim.api.sweep as s\n"
-            "def boom(cfg):\n    raise RuntimeError('a bug')\n"
+            "def boom(cfg, grid=None):\n    raise RuntimeError('a bug')\n"
             "s.simulate = boom\n"
             f"sys.argv = ['sim.run', *{FAST!r}, 'hydra.run.dir={tmp_path / 'run'}', 'output.cache_dir=null']\n"
             "runpy.run_module('sim.run', run_name='__main__')\n")

@@ -16,12 +16,13 @@ import re
 
 import numpy as np
 import pytest
+import xarray as xr
 
 import sim
 from sim.api.cases import operating_points
 from sim.api.friction_model import BREAKAWAY_NOMINAL_SPEED
 from sim.api.simulation import build_models, resolved
-from sim.errors import ConfigError, GeometryError, InputError
+from sim.errors import ConfigError, GeometryError, InputError, OutOfRangeError
 from sim.physics import ratings
 from sim.physics.friction import COMPONENTS
 from sim.physics.kinematics import angular_speed, cage_speed_rolling, roller_speed_rolling
@@ -244,6 +245,48 @@ def test_axial_load_below_the_single_row_bound_is_refused_by_name(bearing, Fr):
     for fragment in ("load.Fa = ", "outside the allowed range", f"load.Fr = {Fr:g} N",
                      f"> Fr tan({np.degrees(beta):.4g} deg) = {bound:.8g} N", "equilibrium"):
         assert fragment in message, (fragment, message)
+
+
+def _beyond_and_within(bearing="trb_32208", Fr=4000.0):
+    """Axial loads just below and well above the single-row bound at ``Fr`` [N]."""
+    g, _ = _limits(bearing)
+    bound = Fr * float(np.tan(g.single_row_thrust_angle))
+    return round(0.5 * bound), round(2.0 * bound)
+
+
+def test_a_grid_case_beyond_the_limits_has_no_result_and_the_others_are_solved():
+    """In a grid, a case beyond the validity limits is a case without a result whose reason is the
+    refusal (as a multirun records a job of it), not a refusal of the whole grid; the other cases
+    are the same numbers as their single runs. A run's only case beyond them is still refused."""
+    low, high = _beyond_and_within()
+    grid = _sim("bearing=trb_32208", f"load.Fa=[{low},{high}]", "load.Fr=[4000]", *FAST)
+    assert grid.converged.values[0].tolist() == [False, True]
+    reason = sim.io.case_failure(grid, [float(grid[c][0]) for c in sim.io.CASE_COORDS])
+    assert reason.startswith(f"refused before the solve: load.Fa = {low:g} N is outside the allowed range")
+    alone = _sim("bearing=trb_32208", f"load.Fa={high}", "load.Fr=4000", *FAST)
+    assert float(grid.pmax.isel(design=0, case=1).sel(race="inner")) == float(alone.pmax.isel(design=0, case=0).sel(
+        race="inner"))
+    with pytest.raises(OutOfRangeError):
+        _sim("bearing=trb_32208", f"load.Fa={low}", "load.Fr=4000", *FAST)
+
+
+def test_the_command_line_writes_a_grid_with_a_case_beyond_the_limits(tmp_path):
+    """``python -m sim.run`` over such a grid (each case its own simulation, through the result
+    cache): exit 1, the result written with the case not converged, its reason on stderr and in
+    the file, the count as the last line; the same single case is exit 2 with one error line."""
+    low, high = _beyond_and_within()
+    out = run(["-m", "sim.run", "bearing=trb_32208", f"load.Fa=[{low},{high}]", "load.Fr=[4000]", *FAST,
+               f"hydra.run.dir={tmp_path / 'grid'}", f"output.cache_dir={tmp_path / 'cache'}"], tmp_path)
+    assert out.returncode == 1, out.stderr[-3000:]
+    assert out.stderr.strip().splitlines()[-1].startswith("1 of 2 cases have no result"), out.stderr[-3000:]
+    assert f"refused before the solve: load.Fa = {low:g} N" in out.stderr
+    with xr.open_dataset(tmp_path / "grid" / "result.nc") as ds:
+        assert ds.converged.values[0].tolist() == [False, True]
+        assert "refused before the solve" in ds.attrs[sim.io.FAILED_CASES]
+    assert_refused(run(["-m", "sim.run", "bearing=trb_32208", f"load.Fa={low}", "load.Fr=4000", *FAST,
+                        f"hydra.run.dir={tmp_path / 'one'}", "output.cache_dir=null"], tmp_path),
+                   f"load.Fa = {low:g} N is outside the allowed range")
+    assert not (tmp_path / "one").exists()
 
 
 @pytest.mark.parametrize("share", [1.02, 1.05, 1.2])

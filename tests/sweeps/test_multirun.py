@@ -114,13 +114,54 @@ def test_killed_sweep_resumes_to_the_uninterrupted_dataset(parallel_sweep, tmp_p
     xr.testing.assert_identical(results(ds), results(uninterrupted))
 
 
+def test_ctrl_c_ends_a_parallel_sweep_with_its_workers_and_one_line(tmp_path):
+    """Ctrl-C (SIGINT to the process group, as a terminal sends it) once the parallel sweep has
+    cached a case: the sweep and its workers end within seconds, exit status 130 and one line
+    ``interrupted: ...`` as stderr's last, no traceback; the same command then resumes with what
+    the interrupted run cached and completes the sweep. Jobs with friction on and 40 cases each
+    (a few seconds of work in all) so that the signal comes while jobs run."""
+    cache, sweep = tmp_path / "cache", tmp_path / "sweep"
+    args = ["hydra/launcher=parallel", "bearing.PCR=70,80,90,100,110,120",
+            "load.Fr=[" + ",".join(str(250 * k) for k in range(40)) + "]", "load.Fa=12000", "solver.n_slices=8"]
+    cmd = [sys.executable, "-m", "sim.run", "--multirun", *args, f"output.cache_dir={cache}",
+           f"hydra.sweep.dir={sweep}"]
+    log = tmp_path / "stderr.txt"
+    with open(log, "w") as err:
+        proc = subprocess.Popen(cmd, cwd=REPO, stdout=subprocess.DEVNULL, stderr=err, start_new_session=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+        try:
+            while proc.poll() is None and not any(cache.rglob(f"*{CACHE_SUFFIX}")):
+                time.sleep(0.01)
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGINT)
+            proc.wait(timeout=30)
+        finally:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+    stderr = log.read_text()
+    assert proc.returncode == 130, (proc.returncode, stderr[-3000:])
+    assert "Traceback" not in stderr, stderr[-3000:]
+    assert stderr.strip().splitlines()[-1].startswith("interrupted: every finished case is kept"), stderr[-3000:]
+    time.sleep(1.0)   # the workers' exit after the parent's
+    left = subprocess.run(["pgrep", "-s", str(proc.pid)], capture_output=True, text=True).stdout.split()
+    assert not left, f"processes of the interrupted sweep still running: {left}"
+    kept = len(list(cache.rglob(f"*{CACHE_SUFFIX}")))
+    assert 0 < kept < 6 * 40
+    resumed = multirun(args, sweep, cache, fast=False)
+    assert resumed.returncode == 0, resumed.stderr[-3000:]
+    assert f"{kept} already in the cache" in resumed.stdout + resumed.stderr
+    assert bool(xr.load_dataset(sweep / "sweep.nc").converged.all())
+
+
 def test_rerun_computes_nothing_but_the_failed_points(parallel_sweep, tmp_path, monkeypatch):
     """Every job of the finished sweep run again (as the launcher runs it, in a copy of the folder):
     no computed point is simulated again, only the two PCR = 8 jobs try again (and fail again),
     and the collector gives the same dataset, run times included."""
     sweep = shutil.copytree(parallel_sweep.dir, tmp_path / "sweep")
     calls = []
-    monkeypatch.setattr(sim.api.sweep, "simulate", lambda cfg: calls.append(float(cfg.bearing.PCR)) or simulate(cfg))
+    monkeypatch.setattr(sim.api.sweep, "simulate",
+                        lambda cfg, grid=None: calls.append(float(cfg.bearing.PCR)) or simulate(cfg, grid=grid))
     for job in json.loads((sweep / "sweep.json").read_text())["jobs"]:
         run_job(OmegaConf.create(job["config"]), sweep / str(job["job"]), job["job"], job["overrides"])
     assert calls == [8.0, 8.0]

@@ -30,11 +30,11 @@ def calls(monkeypatch):
         n = 0
         fail_at = None
 
-    def counting(cfg):
+    def counting(cfg, grid=None):
         Counter.n += 1
         if Counter.n == Counter.fail_at:
             raise KeyboardInterrupt  # what a killed process leaves: no result for this case
-        return real(cfg)
+        return real(cfg, grid=grid)
 
     real = sim.api.sweep.simulate
     monkeypatch.setattr(sim.api.sweep, "simulate", counting)
