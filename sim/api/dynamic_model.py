@@ -55,7 +55,7 @@ def body_and_state(model, friction, op, dyn, raw, kin):
         c_pocket=2.0 * zeta_p * np.sqrt(k_pocket * m),
         half_play=0.5 * friction.pocket_clearance, pocket_transition=friction.pocket_transition,
         c_skew=2.0 * zeta_p * np.sqrt(par.skew_stiffness * Iy), beta=0.0, Fa=float(op.Fa), Fr=float(op.Fr), wi=wi,
-        skew=bool(par.skew), friction=True)
+        tilt=float(np.radians(op.tilt_deg)), skew=bool(par.skew), friction=True)
     y0 = np.zeros(state_size(Z))
     for j in range(Z):
         o = j * NS

@@ -88,15 +88,8 @@ def validate(cfg):
                         "default, needs friction.kinematics = traction)")
     if not any(p.startswith("load.") for p in problems):
         try:
-            ops = operating_points(cfg.load)  # zipped lengths, repeated cases
+            operating_points(cfg.load)  # zipped lengths, repeated cases
         except InputError as exc:
             problems.append(str(exc))
-        else:
-            if OmegaConf.select(cfg, "solver.name") == "dynamic" and any(op.tilt_deg != 0.0 for op in ops):
-                # the time-domain inner ring translates but does not tilt (sim.solvers.dynamic): a tilt
-                # would be ignored and the result labelled with it
-                problems.append(f"load.tilt = {OmegaConf.select(cfg, 'load.tilt')} is outside the allowed range for "
-                                "solver=dynamic: 0 (the time-domain model has no imposed inner-ring tilt, "
-                                "sim.solvers.dynamic); run a tilted case with solver=quasi_static")
     if problems:
         raise ConfigError("\n".join(problems))

@@ -166,7 +166,8 @@ both solvers report. What the quasi-static solution leaves out (its ContactLoads
 the mirror symmetry of its roller classes, sim.solvers.symmetry, and it comes with the rollers'
 orbit rates, which that solution has not either), and the imposed tilt's component across the
 meridian plane (tilt sin(psi), the same kind of lateral slip); the dynamic solver, whose ring
-translates but does not tilt, has the e_perp slip.
+translates and carries the imposed tilt's turn tilt cos(phi_j) in each meridian plane, has the
+e_perp slip and, like the quasi-static solution, not the tilt's component across the plane.
 
 Unknowns: omega_R,j (roller moment about u' = 0, per roller), with skew psi_j (moment about
 v' = 0, per roller), and omega_c (cage moment about z = 0: sum over rollers of the z-moments the

@@ -367,3 +367,44 @@ def roller_contact(ring, phi, cpsi, bearing, elasticity, state):
         for b in range(a):
             K[a, b] = K[b, a]
     return ok
+
+
+@kernel
+def ring_turn_force(state, ring, cpsi, w):
+    """Generalised force of one roller's contacts on the inner ring's turn phi in the roller's
+    meridian plane, -dE/dphi [N mm] (E the contacts' elastic energy), at the state
+    :func:`roller_contact` left in ``state`` (slice loads, frames, rib load and contact).
+
+    The ring's points move with the turn as world = Rot(phi) ring + T, T = (delta_r cpsi, delta_a)
+    (:func:`sim.physics.contact.to_ring`), so a surface point P moves by dP/dphi = (-(P_z - T_z),
+    P_r - T_r), and a contact's penetration changes by -n . dP/dphi (n its unit normal into the
+    ring, as the translation columns of G are -n). So -dE/dphi = sum Q (P - T) x n over the loaded
+    inner slices (Q = w q, P the contact point X) and the rib (its circle centre or contact point,
+    the same product): the moment of the normal forces on the ring about T, positive in the sense
+    of phi ((a x b) = a_r b_z - a_z b_r). The dynamic solver's orbit force of an imposed tilt,
+    whose turn tilt cos(phi_j) depends on the roller's azimuth, is this times d(turn)/d(phi_j).
+
+    Parameters
+    ----------
+    state : RollerContact
+    ring : ndarray (2,)
+        delta_a, delta_r of the inner ring [mm], as given to :func:`roller_contact`.
+    cpsi : float
+        cos(psi), as given to :func:`roller_contact`.
+    w : float
+        Slice width [mm].
+    """
+    n = state.q.shape[1]
+    Tr = ring[1] * cpsi
+    Tz = ring[0]
+    X = state.frames.X[1]
+    Nrm = state.frames.Nrm[1]
+    m = 0.0
+    for k in range(n):
+        if state.q[1, k] > 0.0:
+            m += w * state.q[1, k] * ((X[k, 0] - Tr) * Nrm[k, 1] - (X[k, 1] - Tz) * Nrm[k, 0])
+    if state.Q[2] > 0.0:
+        rc = state.rib_contact
+        m += state.Q[2] * ((rc[0] - Tr) * rc[3] - (rc[1] - Tz) * rc[2])
+    return m
+

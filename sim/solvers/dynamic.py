@@ -2,9 +2,12 @@
 
 Bodies and degrees of freedom
 -----------------------------
-- Inner ring: prescribed spin speed omega_i about z; translation (delta_a along +z, delta_x,
-  delta_y) with mass m_ring under the external Fa (+z) and Fr (+x); no tilt (an imposed tilt is
-  not part of the dynamic model). The outer ring is fixed.
+- Inner ring: prescribed spin speed omega_i about its own axis; translation (delta_a along +z,
+  delta_x, delta_y) with mass m_ring under the external Fa (+z) and Fr (+x); an imposed tilt about
+  the y axis (``body.tilt``, the quasi-static solver's load.tilt), held by the shaft: in the
+  meridian plane of a roller at azimuth phi_j the ring is turned by tilt cos(phi_j), as in the
+  quasi-static solver (the tilt's component across the plane, tilt sin(phi_j), is left out of the
+  planar contact in both). The outer ring is fixed.
 - Roller j, 6 DOF, in the meridian plane through its centre at azimuth phi_j:
   translations xi, eta (the quasi-static solver's coordinates along the nominal roller axes u, v
   of the meridian plane, :mod:`sim.solvers.quasi_static`) and phi_j (orbit); rotations: tilt
@@ -49,7 +52,11 @@ Loads (every formula is a physics kernel; this module only assembles them):
   the contact has a generalized force on phi, Q_phi = (f_r + f_d,r) e_perp [N mm] (f_r the radial
   force of the roller's contacts on the ring), the orbit's tangential force Q_phi / r, and
   d delta_r / dt holds e_perp phi' (the inner raceway's normals meet the ring's own axis, not the
-  bearing's: turned by e_perp / r out of the meridian plane). The ring takes f_r along e_r as
+  bearing's: turned by e_perp / r out of the meridian plane). The imposed tilt's turn tilt cos(phi)
+  depends on the orbit angle likewise: Q_phi = -f_turn tilt sin(phi), f_turn = -dE/d(turn) the
+  moment of the roller's normal forces on the ring about its turning point
+  (:func:`sim.physics.roller_contact.ring_turn_force`; tests/dynamic/test_imposed_tilt.py: it
+  against the penetrations' differences, and the energy of orbiting rollers on a tilted ring). The ring takes f_r along e_r as
   before: the contact energy, a function of (delta_a, delta_r(phi, delta_x, delta_y)) and the
   roller's pose, is invariant under a common turn of ring and rollers about z, so energy and
   angular momentum about z are conserved (tests/dynamic/test_ladder.py). The drive's torque is
@@ -108,7 +115,7 @@ from sim.physics.friction import (EV_FT, EV_FU, EV_FV, EV_MS, EV_MU, EV_MW, EV_P
                                   EV_RING_Z, EV_TOUT, EV_TRING, EV_TZ, NC, NEV, RP_COS, RP_DA, RP_DR, RP_PERP, RP_SIN,
                                   RollerRates, film_scratch, pocket_friction, pocket_skew_couple, pocket_wall_force,
                                   roller_drag, roller_lubrication, roller_traction)
-from sim.physics.roller_contact import NY, ContactFrames, RollerContact, roller_contact
+from sim.physics.roller_contact import NY, ContactFrames, RollerContact, ring_turn_force, roller_contact
 
 # State layout. Per roller NS entries: xi, eta [mm], phi [rad], xi', eta' [mm/s], phi' [rad/s],
 # theta, psi [rad], H_r, H_t, H_z [t mm^2/s = N mm s]; then the inner ring (delta_a, delta_x,
@@ -159,6 +166,7 @@ DynamicBody = namedtuple("DynamicBody", [
     "Fa",         # N, axial load on the inner ring along +z
     "Fr",         # N, radial load on the inner ring along +x
     "wi",         # rad/s, inner-ring speed
+    "tilt",       # rad, imposed inner-ring tilt about the y axis (the quasi-static solver's load.tilt)
     "skew",       # bool, skew is free (else psi = 0 by the pocket)
     "friction",   # bool, traction, drag and pocket friction (else normal contact and pocket only)
 ])
@@ -281,7 +289,10 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
         state = RollerContact(pose, case.bearing.q[j], work.active[j], f, K, work.Q, work.depth, work.G, work.d,
                               work.ribc, ContactFrames(frames.X[j], frames.Nrm[j], frames.Cen[j], frames.Ax[j],
                                                        frames.Xrib[j]), case.bearing.free[j])
-        roller_contact(ring, 0.0, 1.0, bearing, problem.elasticity, state)
+        # the imposed tilt turns the ring by tilt cos(phi) in this meridian plane (as quasi-static)
+        turn = body.tilt * cph
+        roller_contact(ring, turn, 1.0, bearing, problem.elasticity, state)
+        f_turn = ring_turn_force(state, ring, 1.0, bearing.w) if body.tilt != 0.0 else 0.0
         ur = frames.Ax[j, 0]
         uz = frames.Ax[j, 1]
         vr = frames.Ax[j, 2]
@@ -318,6 +329,7 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
             fd[a] = -body.beta * s
             P_el -= f[a] * ydot[a]
             P_damp -= fd[a] * ydot[a]
+        P_el += f_turn * body.tilt * sph * wphi
         Fr_ = (f[0] + fd[0]) * ur + (f[1] + fd[1]) * vr
         Fz_ = (f[0] + fd[0]) * uz + (f[1] + fd[1]) * vz
         # the contact's generalized force on the orbit angle: its energy depends on phi through
@@ -328,6 +340,12 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
         # (tsrb_pinion_long at 5 / 4 kN, 6340 rpm, dx 0.107 mm, dy 0.22 mm: 3.05e5 N mm/s against the
         # contacts' net -2.87e5 N mm/s, a false steady state, session 33)
         Ft_ = (f[4] + fd[4]) * e_perp / r
+        # the imposed tilt's turn tilt cos(phi) depends on the orbit angle likewise: Q_phi = f_turn
+        # d(turn)/d(phi) = -f_turn tilt sin(phi) (f_turn = -dE/d(turn), ring_turn_force), and the
+        # contact energy changes with it at d(turn)/dt = -tilt sin(phi) phi' (in P_el above). It is the
+        # energy-consistent form of the normals' tilt across the meridian plane, tilt sin(phi), which
+        # the planar contact, as the quasi-static solver's, leaves out of the load distribution
+        Ft_ -= f_turn * body.tilt * sph / r
         # moment about the centre, components (e_r, e_t, e_z): the contact moment f_theta conjugate
         # to the tilt, whose rate is theta' = Omega . w'' / cos(psi), is f_theta w'' / cos(psi)
         # (w'' = u'' x v', -e_t without skew; its power f_theta theta' is the elastic energy's).
@@ -362,12 +380,12 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
             case.bearing.nrib[j, 0] = work.ribc[2]
             case.bearing.nrib[j, 1] = work.ribc[3]
             # the inner ring's axis in this meridian plane, about which it spins (sim.physics.friction,
-            # "Inner ring"; it translates, it does not tilt here)
+            # "Inner ring"; translated, and turned by the imposed tilt's share tilt cos(phi))
             pose_ring = case.bearing.ring[j]
             pose_ring[RP_DR] = ring[1]
             pose_ring[RP_DA] = da
-            pose_ring[RP_COS] = 1.0
-            pose_ring[RP_SIN] = 0.0
+            pose_ring[RP_COS] = np.cos(turn)
+            pose_ring[RP_SIN] = np.sin(turn)
             pose_ring[RP_PERP] = e_perp
             # the film at this roller's loads, speed and orbit speed, so that it follows the roller
             # around the bearing (under a radial load a roller crosses the load zone in a fraction

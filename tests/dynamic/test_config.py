@@ -28,15 +28,11 @@ def test_a_load_grid_is_refused_with_the_way_to_run_it():
         sim.simulate(cfg)
 
 
-@pytest.mark.parametrize("tilt", ["0.05", "[0,0.1]"])
-def test_an_imposed_tilt_is_refused_as_the_time_domain_model_has_none(tilt):
-    """The time-domain inner ring translates but does not tilt (sim.solvers.dynamic): a tilted case
-    ran as if untilted, its result labelled with the tilt (TRB 32208 at 9 / 3 kN, 3000 rpm, tilt
-    0.05 deg gave the untilted 1096.9 N mm against the quasi-static 1070.8 N mm; an independent
-    check of session 31). Refused before anything is built, as any out-of-range key; the
-    quasi-static solver takes it."""
-    cfg = sim.load_config(["solver=dynamic", f"load.tilt={tilt}"])
-    with pytest.raises(ConfigError, match=r"load\.tilt = .* solver=dynamic: 0 .*solver=quasi_static"):
-        sim.simulate(cfg)
+def test_a_tilted_grid_is_refused_for_its_grid_not_its_tilt():
+    """The time-domain solver takes an imposed tilt since session 36 (tests/dynamic/test_imposed_tilt.py;
+    refused before, when its inner ring did not tilt); a grid of tilts is refused as any grid, with
+    the way to run it."""
     from sim.api.schema import validate
-    validate(sim.load_config([f"load.tilt={tilt}"]))   # quasi-static: allowed
+    validate(sim.load_config(["solver=dynamic", "load.tilt=0.05"]))
+    with pytest.raises(InputError, match="--multirun"):
+        sim.simulate(sim.load_config(["solver=dynamic", "load.tilt=[0,0.1]"]))
