@@ -18,6 +18,7 @@ from sim.api.simulation import build_models, resolved
 from sim.physics.roller_contact import empty_roller_contact, ring_turn_force, roller_contact
 from sim.solvers.dynamic import (E_ELASTIC, E_IN, E_POCKET, ETA, NCAGE, NRING, NS, PHI, THETA, WPHI, XI, Integration,
                                  kinetic_energy, window_work)
+from tests.dynamic.test_ladder import dynamic_case
 from tests.helpers import ring_in_meridian
 
 
@@ -84,7 +85,7 @@ def test_orbiting_rollers_conserve_energy_on_a_tilted_ring():
     (measured 2e-11); the tilt's share of the elastic energy (the turn's part, f_turn tilt sin(phi)
     phi' integrated along the samples) must be a visible part of it (measured all of it, 0.48 of
     0.46 N mm), so that a wrong or missing orbit force would show."""
-    model, friction, op, plain, dc = _dynamic(["bearing=tsrb_prototype", "load.Fa=4200", "load.Fr=2000",
+    model, friction, op, plain, dc = dynamic_case(["bearing=tsrb_prototype", "load.Fa=4200", "load.Fr=2000",
                                                "load.tilt=0.5", "solver.dynamic.start=quasi_static"])
     problem = dc.problem
     body = problem.body._replace(friction=False, beta=0.0, half_play=1e6)
@@ -107,14 +108,6 @@ def test_orbiting_rollers_conserve_energy_on_a_tilted_ring():
     print(f"energy exchanged {exchanged:.4g} N mm, drift {drift:.2e}, the tilt's part {np.ptp(turn_energy):.4g} N mm")
     assert drift < 1e-6
     assert np.ptp(turn_energy) > 1e-3 * exchanged
-
-
-def _dynamic(overrides):
-    cfg = sim.load_config(["solver=dynamic"] + overrides)
-    plain = resolved(cfg)
-    model, friction = build_models(cfg, plain)
-    op = operating_points(plain["load"])[0]
-    return model, friction, op, plain, dm.prepare(model, friction, op, plain["solver"]["dynamic"])
 
 
 def _turn_power(model, problem, y):
@@ -140,7 +133,7 @@ def test_a_tilted_trb_settles_to_the_quasi_static_solution_at_its_tilt():
     the quasi-static loads by several per cent (pmax 1412 -> 1487 MPa on the inner ring), so the
     load check tells a tilted run from an untilted one."""
     tilted = ["bearing=trb_32208", "load.Fa=9000", "load.Fr=3000", "load.speed=3000", "load.tilt=0.05"]
-    model, friction, op, plain, dc = _dynamic(tilted + ["solver.dynamic.start=rolling"])
+    model, friction, op, plain, dc = dynamic_case(tilted + ["solver.dynamic.start=rolling"])
     integ = dm.run(dc)
     assert integ.steady, f"no steady state in {integ.windows} windows: changes {integ.change}"
     summary, _ = dm.outputs(model, op, dc, integ, 0.0, plain["output"])
