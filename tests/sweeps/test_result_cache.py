@@ -265,7 +265,7 @@ def test_a_dynamic_kind_warms_up_with_a_short_uncached_run(tmp_path, monkeypatch
     it integrated, converged or not."""
     seen = []
 
-    def fake(cfg, op, path):
+    def fake(cfg, op, path, grid=False):
         seen.append((OmegaConf.to_container(cfg.solver, resolve=True), path))
         return xr.Dataset({"converged": (("design", "case"), [[False]])}, coords={"time": [0.0, 1e-3]})
 
