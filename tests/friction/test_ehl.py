@@ -456,6 +456,46 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
                                        par._replace(thermal=False), rule) == 1.0
 
 
+def test_film_temperature_steps_stay_below_the_time_domains_tolerance():
+    """The film temperature is a root found to friction.temperature_tolerance (tol): the finder
+    stops at |rise(dT) - dT| <= tol or a bracket no wider than tol, so |dT - dT*| <= tol (rise
+    falls in dT). Where its path changes with the input (one regula falsi step more or less), its
+    answer jumps by up to that, the viscosity by beta tol. The time domain evaluates the film in
+    every right-hand side: at 0.01 K (until session 37) a jump of 0.05 K (0.15 % of one slice's
+    viscosity, 2 mN on a roller's orbit) sat between neighbouring states of the reference TSRB
+    at 4 / 4 kN, 2000 rpm, Radau's Newton iterations fell to either side, and its steps shrank to
+    1e-11 s: no window in 40 min; at 1e-7 K it settles in 3 windows, 36 s
+    (tests/dynamic/test_ladder.py). So: the defaults keep beta tol below 1 % of the time domain's
+    rtol, beta the steepest viscosity slope of the lubricants (20-120 degC); and the finder keeps
+    its bound against the closed form (Lambert W, the Newtonian film of the test above) over
+    sliding speeds 10-5000 mm/s (dT below 0.1 K to above 30 K), to the round-off of the closed form (1e-9 K)."""
+    from scipy.special import lambertw
+
+    tol = float(OmegaConf.load(REPO / "conf" / "friction" / "default.yaml")["temperature_tolerance"])
+    rtol = float(OmegaConf.load(REPO / "conf" / "solver" / "dynamic.yaml")["dynamic"]["rtol"])
+    beta_max = max(Lubricant.from_config(_lub_cfg(f.stem)).temperature_viscosity_coefficient(T)
+                   for f in (REPO / "conf" / "lubricant").glob("*.yaml") for T in (20.0, 60.0, 120.0))
+    print(f"temperature_tolerance {tol:g} K, steepest beta {beta_max:.4f} 1/K: beta tol {beta_max * tol:.1e} "
+          f"against rtol {rtol:g}")
+    assert beta_max * tol <= 0.01 * rtol
+    beta, k_oil, k_s, kappa_s = 0.046, 0.13, 46.6, 12.5
+    par = _thermal_par(beta, k_oil, k_s, kappa_s)._replace(dT_tol=tol)
+    rule = friction.width_quadrature(16)
+    p, h, half, U = 330.0, 1.3e-3, 0.8, 3000.0
+    errors, rises = [], []
+    for v in np.geomspace(10.0, 5000.0, 2001):
+        U1, U2 = U + 0.5 * v, U - 0.5 * v
+        C = h / (8.0 * k_oil) + 4.0 / 3.0 * math.sqrt(2.0 * half * kappa_s / math.pi) / (
+            k_s * (math.sqrt(U1) + math.sqrt(U2)))
+        exact = lambertw(beta * C * par.eta0 * math.exp(par.alpha * p) * v * v / h).real / beta
+        theta = friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2, par.eta0),
+                                           par, rule)
+        errors.append(abs(-math.log(theta) / beta - exact))
+        rises.append(exact)
+    assert min(rises) < 0.1 and max(rises) > 30.0     # cool to hot films
+    assert max(errors) <= tol + 1e-9
+
+
 # ---------------------------------------------------------------------------------------------
 # 5. Rolling resistance
 # ---------------------------------------------------------------------------------------------
