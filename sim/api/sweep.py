@@ -674,6 +674,7 @@ def warm_up(configs, attempts=3):
         base = _key_base(cfg)
         dynamic = OmegaConf.select(cfg, "solver.name") == "dynamic"
         ops = operating_points(cfg.load)
+        grid = len(ops) > 1
         for op in ops:
             if kind in done or tried.get(kind, 0) >= attempts:
                 break
@@ -683,10 +684,9 @@ def warm_up(configs, attempts=3):
                 if dynamic:
                     short = copy.deepcopy(cfg)
                     short.solver.dynamic.update(DYNAMIC_WARM_UP)
-                    ds = _simulate_case(short, op, None, len(ops) > 1)
+                    ds = _simulate_case(short, op, None, grid)
                 else:
-                    ds, _ = compute_case(copy.deepcopy(cfg), op, cache_file(cfg, op, base), wait=False,
-                                         grid=len(ops) > 1)
+                    ds, _ = compute_case(copy.deepcopy(cfg), op, cache_file(cfg, op, base), wait=False, grid=grid)
             except Exception:  # the job records the error; another job of this kind warms up
                 break
             if ds is None:

@@ -86,10 +86,12 @@ Loads (every formula is a physics kernel; this module only assembles them):
   spins about its own axis (friction module docstring, "Inner ring": its pose at each roller,
   delta_r, delta_a and e_perp, in ContactLoads.ring); the drive's torque is its contacts' moment
   about that axis (EV_TRING), whose product with omega_i is the drive's power;
-- cage pocket: circumferential penalty at the pitch radius, force -k (|g| - c/2) sign(g) beyond
-  the half play c/2 plus a damper while in contact (never pulling), both set in smoothly over a
-  transition depth (a roller resting on its pocket with a few hundredths of a newton sits there:
-  a kink in the force made the integrator's steps 100x shorter), its friction
+- cage pocket: circumferential penalty at the pitch radius r_pocket on the gap g = r_pocket (phi_j -
+  phi_c - 2 pi j / Z), force -k (|g| - c/2) sign(g) beyond the half play c/2 (its moment about z
+  r_pocket times it, on the roller as on the cage) plus a damper while in contact (never pulling),
+  both set in smoothly over a transition depth (a roller resting on its pocket with a few
+  hundredths of a newton sits there: a kink in the force made the integrator's steps 100x
+  shorter), its friction
   (:func:`sim.physics.friction.pocket_friction`), and with skew the pocket couple
   (:func:`sim.physics.friction.pocket_skew_couple`) with a damper of the same ratio.
 
@@ -363,7 +365,14 @@ def rhs(y, problem, work, dy, rol, tot, shared_rows, film):
         Fp = Fs - ramp * body.c_pocket * gdot
         if Fp * Fs < 0.0:   # a damper never pulls the roller into the wall
             Fp = 0.0
-        Ft_ += Fp
+        # the pocket's force acts at the pocket radius, where its gap is measured: moment Fp r_pocket
+        # about z on the roller and -Fp r_pocket on the cage (as the quasi-static free rollers',
+        # sim.solvers.kinematics._pocket_moment), a tangential force Fp r_pocket / r at the roller's
+        # centre. Applied as Fp at the centre (until session 37) the pair's moments differed by
+        # Fp (r - r_pocket), and the pocket did work Fp (r - r_pocket) phi' that no quadrature state
+        # held: tsrb_pinion_long at 5 / 4 kN, 6340 rpm (rollers 1.6-11 mm along their axes), 4.7 % of
+        # the drive's power (tests/dynamic/test_ladder.py, pocket impacts)
+        Ft_ += Fp * body.r_pocket / r
         P_pocket = -Fp * gdot          # pocket work on the relative motion (spring + damper)
         Tcage = -Fp * body.r_pocket     # reaction on the cage about z
         # pocket couple about v' (skew): penalty with damper, or the skew constraint (below)
