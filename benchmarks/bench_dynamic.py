@@ -65,6 +65,13 @@ Measured on the shared 2-core machine (10 revolutions; CPU s, wall s beside):
   (7.36 s/rev; rhs 1.71 ms at the start state), pinion TSRB 20.8 s (2.08 s/rev; rhs 2.17 ms); the same work
   (11743 rhs, 469 Jacobians; 5321, 195) and end torques (746.5, 4974.9 N mm) as session 29: the session's
   changes do not touch the right-hand side.
+- 2026-12-08 (session 37), the film temperature solved to 1e-7 K (b689d00) against 0.01 K (the same code with
+  ``--set friction.temperature_tolerance=0.01``), one run each, a test run on the other core: TRB 32208 34.3 ->
+  37.7 s CPU (3.43 -> 3.77 s/rev; 11800 -> 11660 rhs, 469 -> 484 Jacobians), rhs 1.18 -> 1.47 ms; pinion TSRB
+  14.0 -> 14.6 s (1.40 -> 1.46 s/rev), rhs 1.24 -> 1.45 ms; end torques unchanged (746.4, 4973.0 N mm). A
+  quieter repeat of the rhs alone (401 calls each at the start state): 1.21 -> 1.35 ms (TRB 32208); without the
+  thermal film 0.97 ms: the temperature solve is a third of the right-hand side at 1e-7 K (4.4 evaluations of
+  the heat per solve against 3.1 at 0.01 K, measured on a sweep of sliding speeds), above the 1 ms target.
 
 Run from the repository root::
 
