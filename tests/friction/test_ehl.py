@@ -421,6 +421,23 @@ def _thermal_par(beta, k_oil, k_s, kappa_s):
                         k_oil=k_oil, k_steel=k_s, kappa_steel=kappa_s, dT_tol=1e-9)
 
 
+# Oil and steel of the closed-form thermal tests: beta [1/K], k_oil [W/(m K)], k_steel [W/(m K)],
+# kappa_steel [mm^2/s] (mineral oil near 50 degC; bearing steel).
+THERMAL = (0.046, 0.13, 46.6, 12.5)
+
+
+def _newtonian_film_rise(par, A, h, half, U1, U2):
+    """Film temperature [K] of a Newtonian film of thickness h [mm] whose heat is A exp(-beta dT)
+    [N/(mm s)], in closed form (the docstring below): dT = W(beta C A)/beta, C = h/(8 k_oil) +
+    (4/3) sqrt(2 l kappa/pi) / (k_s (sqrt(U1) + sqrt(U2))); oil and steel from par
+    (:func:`_thermal_par`), half = l [mm], surface speeds U1, U2 [mm/s]."""
+    from scipy.special import lambertw
+
+    C = h / (8.0 * par.k_oil) + 4.0 / 3.0 * math.sqrt(2.0 * half * par.kappa_steel / math.pi) / (
+        par.k_steel * (math.sqrt(U1) + math.sqrt(U2)))
+    return lambertw(par.beta * C * A).real / par.beta
+
+
 @pytest.mark.parametrize("line", [False, True])
 def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
     """Shear heating of a Newtonian film in closed form. With eta = eta0 exp(alpha p - beta dT)
@@ -432,10 +449,8 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
     p0 sqrt(1 - (y/b)^2) across the width, A by adaptive quadrature to 1e-13). The solver stops at
     1e-9 K; the width quadrature (16 Gauss points for a smooth integrand) is exact to ~1e-10:
     1e-7 relative on dT."""
-    from scipy.special import lambertw
-
-    beta, k_oil, k_s, kappa_s = 0.046, 0.13, 46.6, 12.5         # 1/K, W/(m K), W/(m K), mm^2/s
-    par = _thermal_par(beta, k_oil, k_s, kappa_s)
+    par = _thermal_par(*THERMAL)
+    beta = par.beta
     p, h, v, half, U1, U2 = 330.0, 1.3e-3, 1160.0, 0.8, 2300.0, 3460.0   # MPa, mm, mm/s, mm, mm/s
     assert abs(U1 - U2) == v                 # the sliding speed of the surfaces
     rule = friction.width_quadrature(16)
@@ -448,8 +463,7 @@ def test_shear_heating_of_a_newtonian_film_solves_as_lambert_w(line):
     else:
         A = eta0 * math.exp(alpha * p) * v * v / h
         theta = friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2, eta0), par, rule)
-    C = h / (8.0 * k_oil) + 4.0 / 3.0 * math.sqrt(2.0 * half * kappa_s / math.pi) / (k_s * (math.sqrt(U1) + math.sqrt(U2)))
-    dT = lambertw(beta * C * A).real / beta
+    dT = _newtonian_film_rise(par, A, h, half, U1, U2)
     assert 5.0 < dT < 200.0                  # a case where heating matters (rib of a TRB at 40 kN)
     assert -math.log(theta) / beta == pytest.approx(dT, rel=1e-7)
     assert friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2, eta0),
@@ -469,8 +483,6 @@ def test_film_temperature_steps_stay_below_the_time_domains_tolerance():
     rtol, beta the steepest viscosity slope of the lubricants (20-120 degC); and the finder keeps
     its bound against the closed form (Lambert W, the Newtonian film of the test above) over
     sliding speeds 10-5000 mm/s (dT below 0.1 K to above 30 K), to the round-off of the closed form (1e-9 K)."""
-    from scipy.special import lambertw
-
     tol = float(OmegaConf.load(REPO / "conf" / "friction" / "default.yaml")["temperature_tolerance"])
     rtol = float(OmegaConf.load(REPO / "conf" / "solver" / "dynamic.yaml")["dynamic"]["rtol"])
     beta_max = max(Lubricant.from_config(_lub_cfg(f.stem)).temperature_viscosity_coefficient(T)
@@ -478,19 +490,16 @@ def test_film_temperature_steps_stay_below_the_time_domains_tolerance():
     print(f"temperature_tolerance {tol:g} K, steepest beta {beta_max:.4f} 1/K: beta tol {beta_max * tol:.1e} "
           f"against rtol {rtol:g}")
     assert beta_max * tol <= 0.01 * rtol
-    beta, k_oil, k_s, kappa_s = 0.046, 0.13, 46.6, 12.5
-    par = _thermal_par(beta, k_oil, k_s, kappa_s)._replace(dT_tol=tol)
+    par = _thermal_par(*THERMAL)._replace(dT_tol=tol)
     rule = friction.width_quadrature(16)
     p, h, half, U = 330.0, 1.3e-3, 0.8, 3000.0
     errors, rises = [], []
     for v in np.geomspace(10.0, 5000.0, 2001):
         U1, U2 = U + 0.5 * v, U - 0.5 * v
-        C = h / (8.0 * k_oil) + 4.0 / 3.0 * math.sqrt(2.0 * half * kappa_s / math.pi) / (
-            k_s * (math.sqrt(U1) + math.sqrt(U2)))
-        exact = lambertw(beta * C * par.eta0 * math.exp(par.alpha * p) * v * v / h).real / beta
+        exact = _newtonian_film_rise(par, par.eta0 * math.exp(par.alpha * p) * v * v / h, h, half, U1, U2)
         theta = friction._viscosity_factor(friction.HeatedContact(p, 0.0, h, 0.0, 0.0, half, U1, U2, par.eta0),
                                            par, rule)
-        errors.append(abs(-math.log(theta) / beta - exact))
+        errors.append(abs(-math.log(theta) / par.beta - exact))
         rises.append(exact)
     assert min(rises) < 0.1 and max(rises) > 30.0     # cool to hot films
     assert max(errors) <= tol + 1e-9
